@@ -1,0 +1,106 @@
+//! The output model shared by every algorithm family: a Voronoi complex of vertices,
+//! edges and cells, as `../SCENE_FORMAT.md` ("Diagram") defines it.
+
+use crate::geom::Point;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// A feature of a site with features (corner, edge or curve piece), used as a generator
+/// in `complex` and `medial_axis` modes.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FeatureKind {
+    Corner,
+    Edge,
+    Piece,
+}
+
+/// A generator of the diagram: a whole site (written as its index) or one feature of it.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Generator {
+    Site(usize),
+    Feature {
+        site: usize,
+        feature: FeatureKind,
+        index: usize,
+    },
+}
+
+impl Generator {
+    /// The index of the site this generator belongs to.
+    pub fn site(&self) -> usize {
+        match *self {
+            Generator::Site(i) => i,
+            Generator::Feature { site, .. } => site,
+        }
+    }
+}
+
+/// A Voronoi vertex: a point equidistant from its generators (three or more, or more
+/// than three when near-degenerate vertices within epsilon are merged).
+#[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
+pub struct Vertex {
+    pub at: Point,
+    pub sites: Vec<Generator>,
+}
+
+/// A Voronoi edge: a polyline within epsilon of the bisector of its two generators,
+/// from vertex `from` to vertex `to` (`None` where it ends on the domain boundary).
+#[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
+pub struct Edge {
+    pub sites: [Generator; 2],
+    pub from: Option<usize>,
+    pub to: Option<usize>,
+    pub points: Vec<Point>,
+}
+
+/// A site's cell clipped to the domain, as closed rings (last point not repeated).
+#[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
+pub struct Cell {
+    pub site: usize,
+    pub rings: Vec<Vec<Point>>,
+}
+
+/// The Voronoi diagram (or complex, or medial axis) of a scene.
+#[derive(Clone, PartialEq, Debug, Default, Serialize, Deserialize)]
+pub struct VoronoiComplex {
+    pub vertices: Vec<Vertex>,
+    pub edges: Vec<Edge>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub cells: Vec<Cell>,
+    /// Figures of the run: `seconds`, `boxes`, `uncertified_boxes`, ...
+    #[serde(default)]
+    pub stats: BTreeMap<String, serde_json::Value>,
+}
+
+impl VoronoiComplex {
+    /// Checks the structural invariants every algorithm must keep: edge ends name
+    /// existing vertices that list the edge's generators, edges have at least two
+    /// points, and a loop with no vertex is closed. Returns the first violation.
+    pub fn check_invariants(&self) -> Result<(), String> {
+        for (k, e) in self.edges.iter().enumerate() {
+            if e.points.len() < 2 {
+                return Err(format!("edge {k} has fewer than two points"));
+            }
+            if e.sites[0] == e.sites[1] && matches!(e.sites[0], Generator::Site(_)) {
+                return Err(format!("edge {k} separates site {} from itself", e.sites[0].site()));
+            }
+            for end in [e.from, e.to].into_iter().flatten() {
+                let Some(v) = self.vertices.get(end) else {
+                    return Err(format!("edge {k} names vertex {end}, which does not exist"));
+                };
+                if !e.sites.iter().all(|g| v.sites.contains(g)) {
+                    return Err(format!(
+                        "edge {k} ends at vertex {end}, which does not list the edge's generators"
+                    ));
+                }
+            }
+            let closed = e.points.first() == e.points.last();
+            if e.from.is_none() && e.to.is_none() && closed && e.points.len() < 3 {
+                return Err(format!("edge {k} is a degenerate closed loop"));
+            }
+        }
+        Ok(())
+    }
+}

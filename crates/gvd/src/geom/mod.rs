@@ -1,0 +1,181 @@
+//! Plain geometric value types: points and axis-aligned boxes.
+
+use crate::num::interval::Interval;
+use serde::{Deserialize, Serialize};
+use std::ops::{Add, Mul, Sub};
+
+/// A point (or vector) in the plane.
+#[derive(Clone, Copy, PartialEq, Debug, Default, Serialize, Deserialize)]
+#[serde(from = "[f64; 2]", into = "[f64; 2]")]
+pub struct Point {
+    pub x: f64,
+    pub y: f64,
+}
+
+impl From<[f64; 2]> for Point {
+    fn from(a: [f64; 2]) -> Self {
+        Point { x: a[0], y: a[1] }
+    }
+}
+
+impl From<Point> for [f64; 2] {
+    fn from(p: Point) -> Self {
+        [p.x, p.y]
+    }
+}
+
+impl Point {
+    #[inline]
+    pub const fn new(x: f64, y: f64) -> Self {
+        Point { x, y }
+    }
+    #[inline]
+    pub fn dot(self, o: Point) -> f64 {
+        self.x * o.x + self.y * o.y
+    }
+    /// The z-component of the cross product `self × o`.
+    #[inline]
+    pub fn cross(self, o: Point) -> f64 {
+        self.x * o.y - self.y * o.x
+    }
+    #[inline]
+    pub fn norm(self) -> f64 {
+        self.x.hypot(self.y)
+    }
+    #[inline]
+    pub fn dist(self, o: Point) -> f64 {
+        (self - o).norm()
+    }
+    /// The vector rotated by +90°.
+    #[inline]
+    pub fn perp(self) -> Point {
+        Point::new(-self.y, self.x)
+    }
+    #[inline]
+    pub fn lerp(self, o: Point, t: f64) -> Point {
+        Point::new(self.x + (o.x - self.x) * t, self.y + (o.y - self.y) * t)
+    }
+    #[inline]
+    pub fn coord(self, axis: Axis) -> f64 {
+        match axis {
+            Axis::X => self.x,
+            Axis::Y => self.y,
+        }
+    }
+}
+
+impl Add for Point {
+    type Output = Point;
+    #[inline]
+    fn add(self, o: Point) -> Point {
+        Point::new(self.x + o.x, self.y + o.y)
+    }
+}
+
+impl Sub for Point {
+    type Output = Point;
+    #[inline]
+    fn sub(self, o: Point) -> Point {
+        Point::new(self.x - o.x, self.y - o.y)
+    }
+}
+
+impl Mul<f64> for Point {
+    type Output = Point;
+    #[inline]
+    fn mul(self, k: f64) -> Point {
+        Point::new(self.x * k, self.y * k)
+    }
+}
+
+/// A coordinate axis.
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub enum Axis {
+    X,
+    Y,
+}
+
+/// A closed axis-aligned box `[min.x, max.x] × [min.y, max.y]`.
+#[derive(Clone, Copy, PartialEq, Debug)]
+pub struct Aabb {
+    pub min: Point,
+    pub max: Point,
+}
+
+impl Aabb {
+    #[inline]
+    pub const fn new(min: Point, max: Point) -> Self {
+        Aabb { min, max }
+    }
+    /// From `[xmin, ymin, xmax, ymax]`.
+    pub fn from_array(a: [f64; 4]) -> Self {
+        Aabb::new(Point::new(a[0], a[1]), Point::new(a[2], a[3]))
+    }
+    pub fn to_array(self) -> [f64; 4] {
+        [self.min.x, self.min.y, self.max.x, self.max.y]
+    }
+    #[inline]
+    pub fn width(&self) -> f64 {
+        self.max.x - self.min.x
+    }
+    #[inline]
+    pub fn height(&self) -> f64 {
+        self.max.y - self.min.y
+    }
+    #[inline]
+    pub fn longest_side(&self) -> f64 {
+        self.width().max(self.height())
+    }
+    #[inline]
+    pub fn center(&self) -> Point {
+        self.min.lerp(self.max, 0.5)
+    }
+    #[inline]
+    pub fn x(&self) -> Interval {
+        Interval::new(self.min.x, self.max.x)
+    }
+    #[inline]
+    pub fn y(&self) -> Interval {
+        Interval::new(self.min.y, self.max.y)
+    }
+    #[inline]
+    pub fn contains(&self, p: Point) -> bool {
+        self.min.x <= p.x && p.x <= self.max.x && self.min.y <= p.y && p.y <= self.max.y
+    }
+    /// The point at relative coordinates `(u, v) ∈ [0,1]²`.
+    #[inline]
+    pub fn at(&self, u: f64, v: f64) -> Point {
+        Point::new(
+            self.min.x + u * (self.max.x - self.min.x),
+            self.min.y + v * (self.max.y - self.min.y),
+        )
+    }
+    /// Splits at coordinate `at` along `axis` into the lower and the upper part.
+    pub fn split(&self, axis: Axis, at: f64) -> (Aabb, Aabb) {
+        match axis {
+            Axis::X => (
+                Aabb::new(self.min, Point::new(at, self.max.y)),
+                Aabb::new(Point::new(at, self.min.y), self.max),
+            ),
+            Axis::Y => (
+                Aabb::new(self.min, Point::new(self.max.x, at)),
+                Aabb::new(Point::new(self.min.x, at), self.max),
+            ),
+        }
+    }
+    /// The four corners, counter-clockwise from `min`.
+    pub fn corners(&self) -> [Point; 4] {
+        [
+            self.min,
+            Point::new(self.max.x, self.min.y),
+            self.max,
+            Point::new(self.min.x, self.max.y),
+        ]
+    }
+    /// The distance from `p` to the box boundary when `p` lies outside, else 0.
+    pub fn outside_distance(&self, p: Point) -> f64 {
+        let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);
+        let dy = (self.min.y - p.y).max(p.y - self.max.y).max(0.0);
+        dx.hypot(dy)
+    }
+}

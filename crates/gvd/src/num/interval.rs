@@ -1,0 +1,229 @@
+//! Closed f64 intervals with outward rounding.
+//!
+//! Every arithmetic result is widened by one ulp on each side (`next_down` / `next_up`),
+//! which encloses the exact result of the operation on the exact operands: round-to-
+//! nearest is off by at most half an ulp. All rounding goes through [`round_down`] and
+//! [`round_up`], so a faster directed-rounding successor can be swapped in at one place.
+
+use std::fmt;
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// Rounds a computed lower end down so that it encloses the exact value.
+#[inline]
+pub fn round_down(x: f64) -> f64 {
+    x.next_down()
+}
+
+/// Rounds a computed upper end up so that it encloses the exact value.
+#[inline]
+pub fn round_up(x: f64) -> f64 {
+    x.next_up()
+}
+
+/// A closed interval `[lo, hi]` of reals, `lo <= hi` (or empty-free by construction).
+#[derive(Clone, Copy, PartialEq, Debug, Default)]
+pub struct Interval {
+    pub lo: f64,
+    pub hi: f64,
+}
+
+impl Interval {
+    /// The interval `[lo, hi]`; the caller guarantees `lo <= hi`.
+    #[inline]
+    pub const fn new(lo: f64, hi: f64) -> Self {
+        Interval { lo, hi }
+    }
+
+    /// The degenerate interval `[x, x]`.
+    #[inline]
+    pub const fn point(x: f64) -> Self {
+        Interval { lo: x, hi: x }
+    }
+
+    /// The smallest interval holding both `a` and `b`, in either order.
+    #[inline]
+    pub fn hull_of(a: f64, b: f64) -> Self {
+        Interval::new(a.min(b), a.max(b))
+    }
+
+    /// The smallest interval holding `self` and `other`.
+    #[inline]
+    pub fn hull(self, other: Interval) -> Self {
+        Interval::new(self.lo.min(other.lo), self.hi.max(other.hi))
+    }
+
+    #[inline]
+    pub fn width(self) -> f64 {
+        self.hi - self.lo
+    }
+
+    #[inline]
+    pub fn mid(self) -> f64 {
+        0.5 * (self.lo + self.hi)
+    }
+
+    #[inline]
+    pub fn contains(self, x: f64) -> bool {
+        self.lo <= x && x <= self.hi
+    }
+
+    /// True when every element is strictly positive or every element strictly negative.
+    #[inline]
+    pub fn excludes_zero(self) -> bool {
+        self.lo > 0.0 || self.hi < 0.0
+    }
+
+    /// The largest absolute value in the interval.
+    #[inline]
+    pub fn mag(self) -> f64 {
+        self.lo.abs().max(self.hi.abs())
+    }
+
+    /// `self²`, tight (non-negative even when the interval straddles zero).
+    #[inline]
+    pub fn sqr(self) -> Self {
+        let (a, b) = (self.lo.abs(), self.hi.abs());
+        let (small, large) = if a < b { (a, b) } else { (b, a) };
+        let lo = if self.lo <= 0.0 && self.hi >= 0.0 {
+            0.0
+        } else {
+            round_down(small * small).max(0.0)
+        };
+        Interval::new(lo, round_up(large * large))
+    }
+
+    /// `self^n` for a non-negative integer `n`, tight for even and odd `n`.
+    pub fn powi(self, n: u32) -> Self {
+        match n {
+            0 => Interval::point(1.0),
+            1 => self,
+            _ if n % 2 == 0 => self.sqr().powi(n / 2),
+            _ => {
+                // odd power is monotone
+                let lo = pow_down(self.lo, n);
+                let hi = pow_up(self.hi, n);
+                Interval::new(lo, hi)
+            }
+        }
+    }
+
+    /// `sqrt(self)` for `self.lo >= 0` (negative parts are clamped to zero).
+    #[inline]
+    pub fn sqrt(self) -> Self {
+        Interval::new(
+            round_down(self.lo.max(0.0).sqrt()).max(0.0),
+            round_up(self.hi.max(0.0).sqrt()),
+        )
+    }
+
+    /// `self * k` for a scalar `k`.
+    #[inline]
+    pub fn scale(self, k: f64) -> Self {
+        let (a, b) = (self.lo * k, self.hi * k);
+        Interval::new(round_down(a.min(b)), round_up(a.max(b)))
+    }
+}
+
+/// `x^n` rounded down (odd `n`, monotone), by repeated outward multiplication.
+fn pow_down(x: f64, n: u32) -> f64 {
+    Interval::point(x).repeated_mul(n).lo
+}
+
+fn pow_up(x: f64, n: u32) -> f64 {
+    Interval::point(x).repeated_mul(n).hi
+}
+
+impl Interval {
+    fn repeated_mul(self, n: u32) -> Self {
+        let mut r = self;
+        for _ in 1..n {
+            r = r * self;
+        }
+        r
+    }
+}
+
+impl Add for Interval {
+    type Output = Interval;
+    #[inline]
+    fn add(self, o: Interval) -> Interval {
+        Interval::new(round_down(self.lo + o.lo), round_up(self.hi + o.hi))
+    }
+}
+
+impl Sub for Interval {
+    type Output = Interval;
+    #[inline]
+    fn sub(self, o: Interval) -> Interval {
+        Interval::new(round_down(self.lo - o.hi), round_up(self.hi - o.lo))
+    }
+}
+
+impl Neg for Interval {
+    type Output = Interval;
+    #[inline]
+    fn neg(self) -> Interval {
+        Interval::new(-self.hi, -self.lo)
+    }
+}
+
+impl Mul for Interval {
+    type Output = Interval;
+    #[inline]
+    fn mul(self, o: Interval) -> Interval {
+        let p = [self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi];
+        let lo = p[0].min(p[1]).min(p[2]).min(p[3]);
+        let hi = p[0].max(p[1]).max(p[2]).max(p[3]);
+        Interval::new(round_down(lo), round_up(hi))
+    }
+}
+
+impl Add<f64> for Interval {
+    type Output = Interval;
+    #[inline]
+    fn add(self, k: f64) -> Interval {
+        self + Interval::point(k)
+    }
+}
+
+impl Sub<f64> for Interval {
+    type Output = Interval;
+    #[inline]
+    fn sub(self, k: f64) -> Interval {
+        self - Interval::point(k)
+    }
+}
+
+impl fmt::Display for Interval {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "[{}, {}]", self.lo, self.hi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn products_enclose_samples(a in -1e3..1e3f64, b in 0.0..1e3f64, c in -1e3..1e3f64, d in 0.0..1e3f64, s in 0.0..1.0f64, t in 0.0..1.0f64) {
+            let x = Interval::new(a, a + b);
+            let y = Interval::new(c, c + d);
+            let (u, v) = (a + s * b, c + t * d);
+            prop_assert!((x * y).contains(u * v));
+            prop_assert!((x + y).contains(u + v));
+            prop_assert!((x - y).contains(u - v));
+            prop_assert!(x.sqr().contains(u * u));
+            prop_assert!(x.powi(3).contains(u * u * u));
+            prop_assert!(x.powi(4).contains(u * u * u * u));
+        }
+    }
+
+    #[test]
+    fn square_of_straddling_interval_starts_at_zero() {
+        let s = Interval::new(-1.0, 2.0).sqr();
+        assert_eq!(s.lo, 0.0);
+        assert!(s.hi >= 4.0);
+    }
+}

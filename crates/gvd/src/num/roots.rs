@@ -1,0 +1,1 @@
+//! Certified real root isolation. STUB: the numerics helper replaces this file.

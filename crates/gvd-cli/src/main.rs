@@ -1,1 +1,155 @@
-fn main() {}
+//! `gvd`: generalized Voronoi diagrams from the command line.
+
+mod bench;
+
+use anyhow::{bail, Context, Result};
+use clap::{Parser, Subcommand};
+use gvd::{Scene, VoronoiComplex};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "gvd", version, about = "Generalized Voronoi diagrams in the plane")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Compute the diagram of a scene; write it as JSON and/or SVG.
+    Compute {
+        /// The scene (JSON, see SCENE_FORMAT.md).
+        scene: PathBuf,
+        /// Write the diagram here (JSON).
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write a picture here (SVG).
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        /// Draw the subdivision boxes in the picture.
+        #[arg(long)]
+        boxes: bool,
+        /// Split boxes that hold two or more sites until no longer than this.
+        #[arg(long)]
+        max_box: Option<f64>,
+        /// Worker threads (default: all cores; 1 = sequential).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+    /// Check a diagram against its scene by brute force (independent of the engines).
+    Verify {
+        scene: PathBuf,
+        diagram: PathBuf,
+        /// Completeness grid size (N × N).
+        #[arg(long, default_value_t = 512)]
+        grid: usize,
+        /// Tolerance as a multiple of the scene's epsilon.
+        #[arg(long, default_value_t = 1.0)]
+        slack: f64,
+    },
+    /// Reproduce a paper's table of timings and box counts.
+    Bench {
+        /// Which table: `emiris-table1`.
+        table: String,
+        /// Also run 10^4 and 10^5 Euclidean sites and the multi-core speed-up.
+        #[arg(long)]
+        large: bool,
+        /// Repetitions per row (the best time is reported).
+        #[arg(long, default_value_t = 3)]
+        repeat: usize,
+    },
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("gvd: error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::Compute { scene, json, svg, boxes, max_box, threads } => {
+            if json.is_none() && svg.is_none() {
+                bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
+            }
+            if let Some(n) = threads {
+                rayon::ThreadPoolBuilder::new().num_threads(n.max(1)).build_global()?;
+            }
+            let sc = read_scene(&scene)?;
+            let options = gvd::Options {
+                max_box,
+                parallel: threads != Some(1),
+            };
+            let out = gvd::compute_with_boxes(&sc, &options)
+                .with_context(|| format!("{}", scene.display()))?;
+            let d = &out.complex;
+            eprintln!(
+                "{}: {} vertices, {} edges, {} boxes ({} uncertified) in {:.3} s",
+                scene.display(),
+                d.vertices.len(),
+                d.edges.len(),
+                stat(d, "boxes"),
+                stat(d, "uncertified_boxes"),
+                d.stats.get("seconds").and_then(|v| v.as_f64()).unwrap_or(0.0)
+            );
+            if let Some(path) = json {
+                write_atomic(&path, &gvd::io::json::write_diagram(d))?;
+            }
+            if let Some(path) = svg {
+                let opts = gvd::io::svg::SvgOptions {
+                    boxes: if boxes { out.boxes.clone() } else { Vec::new() },
+                    ..Default::default()
+                };
+                write_atomic(&path, &gvd::io::svg::render_svg(&sc, d, &opts))?;
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Verify { scene, diagram, grid, slack } => {
+            let sc = read_scene(&scene)?;
+            let text = std::fs::read_to_string(&diagram)
+                .with_context(|| format!("cannot read {}", diagram.display()))?;
+            let d: VoronoiComplex = gvd::io::json::read_diagram(&text)
+                .with_context(|| format!("{}", diagram.display()))?;
+            let opts = gvd::verify::VerifyOptions { grid, slack, ..Default::default() };
+            let report = gvd::verify::verify(&sc, &d, &opts)?;
+            for p in &report.problems {
+                println!("  {p}");
+            }
+            println!("{}", report.summary_line());
+            Ok(if report.passed { ExitCode::SUCCESS } else { ExitCode::from(1) })
+        }
+        Command::Bench { table, large, repeat } => match table.as_str() {
+            "emiris-table1" => {
+                bench::emiris_table1(large, repeat.max(1));
+                Ok(ExitCode::SUCCESS)
+            }
+            other => bail!("unknown table '{other}' (known: emiris-table1)"),
+        },
+    }
+}
+
+fn stat(d: &VoronoiComplex, key: &str) -> String {
+    d.stats.get(key).map(|v| v.to_string()).unwrap_or_else(|| "-".into())
+}
+
+fn read_scene(path: &Path) -> Result<Scene> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    Scene::from_json(&text).with_context(|| format!("{}", path.display()))
+}
+
+/// Writes through a temporary file in the same directory and renames it into place, so
+/// that a failure never leaves a half-written output.
+fn write_atomic(path: &Path, contents: &str) -> Result<()> {
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().context("output path has no file name")?;
+    let tmp = dir.join(format!(".{}.tmp", name.to_string_lossy()));
+    std::fs::write(&tmp, contents).with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
+}

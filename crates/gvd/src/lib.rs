@@ -10,11 +10,17 @@
 //! ```
 
 pub mod complex;
+mod compute;
 pub mod error;
 pub mod geom;
+pub mod io;
 pub mod num;
 pub mod scene;
+pub mod site;
+pub mod subdivision;
+pub mod verify;
 
 pub use complex::VoronoiComplex;
+pub use compute::{compute, compute_with_boxes, Computation, Options};
 pub use error::Error;
 pub use scene::Scene;

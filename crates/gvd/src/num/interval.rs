@@ -116,6 +116,22 @@ impl Interval {
         )
     }
 
+    /// `self / d` for a divisor interval that excludes zero (`None` otherwise).
+    pub fn div(self, d: Interval) -> Option<Self> {
+        if !d.excludes_zero() {
+            return None;
+        }
+        let q = [
+            self.lo / d.lo,
+            self.lo / d.hi,
+            self.hi / d.lo,
+            self.hi / d.hi,
+        ];
+        let lo = q[0].min(q[1]).min(q[2]).min(q[3]);
+        let hi = q[0].max(q[1]).max(q[2]).max(q[3]);
+        Some(Interval::new(round_down(lo), round_up(hi)))
+    }
+
     /// `self * k` for a scalar `k`.
     #[inline]
     pub fn scale(self, k: f64) -> Self {
@@ -171,7 +187,12 @@ impl Mul for Interval {
     type Output = Interval;
     #[inline]
     fn mul(self, o: Interval) -> Interval {
-        let p = [self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi];
+        let p = [
+            self.lo * o.lo,
+            self.lo * o.hi,
+            self.hi * o.lo,
+            self.hi * o.hi,
+        ];
         let lo = p[0].min(p[1]).min(p[2]).min(p[3]);
         let hi = p[0].max(p[1]).max(p[2]).max(p[3]);
         Interval::new(round_down(lo), round_up(hi))

@@ -1,0 +1,279 @@
+//! Stitching: the leaves' pieces are chained through their shared ports into edges from
+//! vertex to vertex (or to the domain boundary); vertices closer than the tolerance
+//! along an edge are merged into one vertex of higher degree; polylines are simplified.
+
+use super::resolve::{End, FoundVertex, LeafOutput, PortId};
+use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
+use crate::geom::Point;
+use std::collections::HashMap;
+
+/// A piece end after the leaf-local vertex numbers became global.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum GEnd {
+    Port(PortId),
+    Vertex(usize),
+}
+
+struct GPiece {
+    pair: [u32; 2],
+    ends: [GEnd; 2],
+    points: Vec<Point>,
+}
+
+/// Chains all pieces into the complex's vertices and edges.
+pub fn assemble(outputs: Vec<LeafOutput>, merge_len: f64, simplify_tol: f64) -> VoronoiComplex {
+    let mut vertices: Vec<FoundVertex> = Vec::new();
+    let mut pieces: Vec<GPiece> = Vec::new();
+    for o in outputs {
+        let base = vertices.len();
+        let g = |e: End| match e {
+            End::Port(p) => GEnd::Port(p),
+            End::Vertex(v) => GEnd::Vertex(base + v as usize),
+        };
+        pieces.extend(o.pieces.into_iter().map(|p| GPiece {
+            pair: p.pair,
+            ends: [g(p.ends[0]), g(p.ends[1])],
+            points: p.points,
+        }));
+        vertices.extend(o.vertices);
+    }
+    // link piece ends that share a port
+    let mut at_port: HashMap<PortId, Vec<(usize, usize)>> = HashMap::with_capacity(pieces.len());
+    for (k, p) in pieces.iter().enumerate() {
+        for e in 0..2 {
+            if let GEnd::Port(id) = p.ends[e] {
+                at_port.entry(id).or_default().push((k, e));
+            }
+        }
+    }
+    let mut link: Vec<[Option<(usize, usize)>; 2]> = vec![[None, None]; pieces.len()];
+    for ends in at_port.values() {
+        if let [a, b] = ends[..] {
+            link[a.0][a.1] = Some(b);
+            link[b.0][b.1] = Some(a);
+        }
+    }
+    let mut used = vec![false; pieces.len()];
+    let mut chains: Vec<Chain> = Vec::new();
+    // open chains start at an unlinked end (a vertex or a port on the domain boundary)
+    for k in 0..pieces.len() {
+        for e in 0..2 {
+            if !used[k] && link[k][e].is_none() {
+                chains.push(walk(&pieces, &link, &mut used, k, e));
+            }
+        }
+    }
+    // what is left are closed loops
+    for k in 0..pieces.len() {
+        if !used[k] {
+            let mut c = walk(&pieces, &link, &mut used, k, 0);
+            c.closed = true;
+            if let (Some(&f), Some(&l)) = (c.points.first(), c.points.last()) {
+                if f != l {
+                    c.points.push(f);
+                }
+            }
+            chains.push(c);
+        }
+    }
+    build_complex(vertices, chains, merge_len, simplify_tol)
+}
+
+struct Chain {
+    pair: [u32; 2],
+    ends: [Option<usize>; 2],
+    points: Vec<Point>,
+    closed: bool,
+}
+
+/// Follows linked pieces from end `e` of piece `k` until an unlinked end or a loop.
+fn walk(
+    pieces: &[GPiece],
+    link: &[[Option<(usize, usize)>; 2]],
+    used: &mut [bool],
+    k: usize,
+    e: usize,
+) -> Chain {
+    let vertex_of = |g: GEnd| match g {
+        GEnd::Vertex(v) => Some(v),
+        GEnd::Port(_) => None,
+    };
+    let first = vertex_of(pieces[k].ends[e]);
+    let mut points: Vec<Point> = Vec::new();
+    let (mut k, mut e) = (k, e);
+    loop {
+        used[k] = true;
+        let p = &pieces[k];
+        let seq: Box<dyn Iterator<Item = &Point>> = if e == 0 {
+            Box::new(p.points.iter())
+        } else {
+            Box::new(p.points.iter().rev())
+        };
+        for &q in seq {
+            if points.last() != Some(&q) {
+                points.push(q);
+            }
+        }
+        let out_end = 1 - e;
+        match link[k][out_end] {
+            Some((nk, ne)) if !used[nk] => {
+                k = nk;
+                e = ne;
+            }
+            _ => {
+                return Chain {
+                    pair: pieces[k].pair,
+                    ends: [first, vertex_of(pieces[k].ends[out_end])],
+                    points,
+                    closed: false,
+                };
+            }
+        }
+    }
+}
+
+/// Merges vertices joined by chains shorter than `merge_len`, then writes the complex.
+fn build_complex(
+    found: Vec<FoundVertex>,
+    chains: Vec<Chain>,
+    merge_len: f64,
+    tol: f64,
+) -> VoronoiComplex {
+    let mut parent: Vec<usize> = (0..found.len()).collect();
+    fn root(parent: &mut [usize], mut v: usize) -> usize {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    }
+    let mut short = vec![false; chains.len()];
+    for (k, c) in chains.iter().enumerate() {
+        if let [Some(a), Some(b)] = c.ends {
+            if length(&c.points) <= merge_len {
+                short[k] = true;
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                parent[ra.max(rb)] = ra.min(rb);
+            }
+        }
+    }
+    // merged vertices: mean position, union of generators
+    let mut index = vec![usize::MAX; found.len()];
+    let mut acc: Vec<(Point, usize, Vec<u32>)> = Vec::new();
+    for v in 0..found.len() {
+        let r = root(&mut parent, v);
+        if index[r] == usize::MAX {
+            index[r] = acc.len();
+            acc.push((Point::new(0.0, 0.0), 0, Vec::new()));
+        }
+        let a = &mut acc[index[r]];
+        a.0 = a.0 + found[v].at;
+        a.1 += 1;
+        a.2.extend_from_slice(&found[v].sites);
+    }
+    let mut out = VoronoiComplex::default();
+    for (sum, n, mut sites) in acc {
+        sites.sort_unstable();
+        sites.dedup();
+        out.vertices.push(Vertex {
+            at: sum * (1.0 / n as f64),
+            sites: sites
+                .into_iter()
+                .map(|s| Generator::Site(s as usize))
+                .collect(),
+        });
+    }
+    let mut vid = |v: usize| index[root(&mut parent, v)];
+    for (k, mut c) in chains.into_iter().enumerate() {
+        if short[k] {
+            continue;
+        }
+        let ends = [c.ends[0].map(&mut vid), c.ends[1].map(&mut vid)];
+        for (e, end) in ends.iter().enumerate() {
+            if let Some(v) = end {
+                let at = out.vertices[*v].at;
+                if e == 0 {
+                    c.points[0] = at;
+                } else if let Some(l) = c.points.last_mut() {
+                    *l = at;
+                }
+            }
+        }
+        let points = simplify(&c.points, tol, c.closed);
+        if points.len() < 2 {
+            continue;
+        }
+        out.edges.push(Edge {
+            sites: [
+                Generator::Site(c.pair[0] as usize),
+                Generator::Site(c.pair[1] as usize),
+            ],
+            from: ends[0],
+            to: ends[1],
+            points,
+        });
+    }
+    out
+}
+
+fn length(points: &[Point]) -> f64 {
+    points.windows(2).map(|w| w[0].dist(w[1])).sum()
+}
+
+/// Douglas–Peucker simplification keeping both ends (and, for a loop, the farthest point).
+fn simplify(points: &[Point], tol: f64, closed: bool) -> Vec<Point> {
+    if points.len() <= 2 {
+        return points.to_vec();
+    }
+    let mut keep = vec![false; points.len()];
+    keep[0] = true;
+    keep[points.len() - 1] = true;
+    if closed {
+        let far = (1..points.len() - 1)
+            .max_by(|&i, &j| {
+                points[i]
+                    .dist(points[0])
+                    .total_cmp(&points[j].dist(points[0]))
+            })
+            .unwrap_or(1);
+        keep[far] = true;
+        dp(points, 0, far, tol, &mut keep);
+        dp(points, far, points.len() - 1, tol, &mut keep);
+    } else {
+        dp(points, 0, points.len() - 1, tol, &mut keep);
+    }
+    points
+        .iter()
+        .zip(keep)
+        .filter(|(_, k)| *k)
+        .map(|(p, _)| *p)
+        .collect()
+}
+
+fn dp(points: &[Point], i: usize, j: usize, tol: f64, keep: &mut [bool]) {
+    if j <= i + 1 {
+        return;
+    }
+    let (a, b) = (points[i], points[j]);
+    let dist = |p: Point| segment_distance(p, a, b);
+    let (k, worst) = (i + 1..j)
+        .map(|k| (k, dist(points[k])))
+        .fold((i + 1, -1.0), |acc, x| if x.1 > acc.1 { x } else { acc });
+    if worst > tol {
+        keep[k] = true;
+        dp(points, i, k, tol, keep);
+        dp(points, k, j, tol, keep);
+    }
+}
+
+/// The distance from `p` to the segment `ab`.
+fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
+    let d = b - a;
+    let l2 = d.dot(d);
+    let t = if l2 == 0.0 {
+        0.0
+    } else {
+        ((p - a).dot(d) / l2).clamp(0.0, 1.0)
+    };
+    p.dist(a + d * t)
+}

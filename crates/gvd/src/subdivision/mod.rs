@@ -1,0 +1,136 @@
+//! The subdivision engine (Emiris, Mantzaflaris, Mourrain 2013, Alg. 1 and 2), generic
+//! over [`DistanceField`]: subdivide with the lower-envelope filter, cut the leaves'
+//! sides into shared segments, find the label changes on them, resolve each leaf, stitch.
+
+mod assemble;
+mod filter;
+mod resolve;
+mod segments;
+mod trace;
+mod tree;
+
+use crate::complex::VoronoiComplex;
+use crate::geom::Aabb;
+use crate::site::DistanceField;
+use resolve::{LeafOutput, Port, PortId, Resolver, Tolerances};
+use serde_json::json;
+use std::time::Instant;
+pub use tree::Leaf;
+
+/// Parameters of a subdivision run.
+#[derive(Clone, Copy, Debug)]
+pub struct Params {
+    pub domain: Aabb,
+    /// Output curves lie within this distance of the true diagram.
+    pub epsilon: f64,
+    /// Boxes that hold two or more sites are split until no longer than this.
+    pub max_box: Option<f64>,
+    /// Use rayon's thread pool (the result is the same either way).
+    pub parallel: bool,
+}
+
+/// The diagram and the leaves of the subdivision (for pictures and box counts).
+pub struct Output {
+    pub complex: VoronoiComplex,
+    pub leaves: Vec<Leaf>,
+}
+
+/// Computes the minimization diagram of `fields` over the domain.
+pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
+    let start = Instant::now();
+    let eps = params.epsilon;
+    let min_box = 0.5 * eps;
+    let lattice = tree::Lattice::new(&params.domain, params.max_box);
+    let tree_params = tree::Params {
+        max_box: params.max_box,
+        min_box,
+        parallel: params.parallel,
+    };
+    let leaves = tree::subdivide(fields, &lattice, &tree_params);
+    let t_subdivide = start.elapsed().as_secs_f64();
+
+    let segs = segments::build(&leaves, &lattice);
+    let scan_len = 0.125 * eps;
+    let scan_one = |s: &segments::Segment| {
+        let cands = match s.leaves {
+            [Some(a), Some(b)] => intersect(&leaves[a as usize].sites, &leaves[b as usize].sites),
+            [Some(a), None] | [None, Some(a)] => leaves[a as usize].sites.clone(),
+            [None, None] => Vec::new(),
+        };
+        segments::transitions(fields, &cands, s.from, s.to, scan_len)
+    };
+    let transitions: Vec<Vec<segments::Transition>> =
+        map(params.parallel, &segs.segments, scan_one);
+
+    let tol = Tolerances {
+        trace: 0.25 * eps,
+        min_box,
+        scan: scan_len,
+    };
+    let leaf_ids: Vec<usize> = (0..leaves.len()).collect();
+    let resolve_one = |&l: &usize| {
+        let leaf = &leaves[l];
+        let mut out = LeafOutput::default();
+        if leaf.sites.len() < 2 {
+            return out;
+        }
+        let mut ports = Vec::new();
+        for &s in &segs.members[segs.rows[l]..segs.rows[l + 1]] {
+            for (k, t) in transitions[s as usize].iter().enumerate() {
+                ports.push(Port {
+                    id: PortId::Segment {
+                        segment: s,
+                        index: k as u32,
+                    },
+                    at: t.at,
+                    pair: t.pair,
+                });
+            }
+        }
+        Resolver::new(fields, tol, l as u32).resolve(leaf.aabb, &leaf.sites, ports, &mut out);
+        out
+    };
+    let outputs: Vec<LeafOutput> = map(params.parallel, &leaf_ids, resolve_one);
+    let uncertified: u32 = outputs.iter().map(|o| o.uncertified).sum();
+    let local_splits: u32 = outputs.iter().map(|o| o.local_splits).sum();
+    let mut complex = assemble::assemble(outputs, 0.5 * eps, 0.125 * eps);
+
+    let spanning = leaves.iter().filter(|l| l.sites.len() >= 2).count();
+    let stats = &mut complex.stats;
+    stats.insert("seconds".into(), json!(start.elapsed().as_secs_f64()));
+    stats.insert("seconds_subdivision".into(), json!(t_subdivide));
+    stats.insert("engine".into(), json!("subdivision"));
+    stats.insert("boxes".into(), json!(spanning));
+    stats.insert("leaves".into(), json!(leaves.len()));
+    stats.insert("uncertified_boxes".into(), json!(uncertified));
+    stats.insert("local_splits".into(), json!(local_splits));
+    Output { complex, leaves }
+}
+
+/// The sorted intersection of two sorted site lists.
+fn intersect(a: &[u32], b: &[u32]) -> Vec<u32> {
+    let (mut i, mut j, mut out) = (0, 0, Vec::new());
+    while i < a.len() && j < b.len() {
+        match a[i].cmp(&b[j]) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => {
+                out.push(a[i]);
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out
+}
+
+/// `items.map(f)` in order, on rayon's pool when asked.
+fn map<T: Sync, R: Send>(parallel: bool, items: &[T], f: impl Fn(&T) -> R + Sync + Send) -> Vec<R> {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        use rayon::prelude::*;
+        return items.par_iter().map(f).collect();
+    }
+    let _ = parallel;
+    items.iter().map(f).collect()
+}

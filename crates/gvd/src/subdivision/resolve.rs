@@ -1,0 +1,346 @@
+//! Reconstruction inside one leaf (Emiris et al. 2013, §2.3): from the label changes on
+//! the leaf's boundary ("ports") and its certificate, join the ports by bisector arcs and
+//! place the Voronoi vertex. A leaf whose ports do not fit a certified pattern is split
+//! locally (new ports on the split line) until they do, or until the resolution cut-off,
+//! where all its ports meet at one vertex of the labels present (a near-degenerate vertex
+//! of higher degree, reported as uncertified).
+
+use super::filter::{self, Certificate};
+use super::segments::{label, transitions};
+use super::trace;
+use crate::geom::{Aabb, Axis, Point};
+use crate::site::DistanceField;
+
+/// Identifies a port globally: a transition on a shared segment, or one on a split line
+/// inside a leaf.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum PortId {
+    Segment { segment: u32, index: u32 },
+    Inner { leaf: u32, index: u32 },
+}
+
+/// A label change on a box boundary: the bisector of `pair` crosses the boundary at `at`.
+#[derive(Clone, Copy, Debug)]
+pub struct Port {
+    pub id: PortId,
+    pub at: Point,
+    pub pair: [u32; 2],
+}
+
+/// One end of a piece: a port, or a vertex of this leaf's output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum End {
+    Port(PortId),
+    Vertex(u32),
+}
+
+/// A bisector arc inside the leaf between two ends, as a polyline.
+#[derive(Clone, Debug)]
+pub struct Piece {
+    pub pair: [u32; 2],
+    pub ends: [End; 2],
+    pub points: Vec<Point>,
+}
+
+/// A Voronoi vertex found in the leaf, with its generators (sorted).
+#[derive(Clone, Debug)]
+pub struct FoundVertex {
+    pub at: Point,
+    pub sites: Vec<u32>,
+}
+
+/// What a leaf contributes to the diagram.
+#[derive(Clone, Debug, Default)]
+pub struct LeafOutput {
+    pub pieces: Vec<Piece>,
+    pub vertices: Vec<FoundVertex>,
+    pub uncertified: u32,
+    pub local_splits: u32,
+}
+
+/// Tolerances of the reconstruction.
+#[derive(Clone, Copy, Debug)]
+pub struct Tolerances {
+    /// Maximum distance of a traced chord from the bisector.
+    pub trace: f64,
+    /// Boxes this small are not split again.
+    pub min_box: f64,
+    /// Label changes along a segment are isolated to this length.
+    pub scan: f64,
+}
+
+pub struct Resolver<'a, F> {
+    pub fields: &'a [F],
+    pub tol: Tolerances,
+    pub leaf: u32,
+    next_inner: u32,
+}
+
+impl<'a, F: DistanceField> Resolver<'a, F> {
+    pub fn new(fields: &'a [F], tol: Tolerances, leaf: u32) -> Self {
+        Resolver {
+            fields,
+            tol,
+            leaf,
+            next_inner: 0,
+        }
+    }
+
+    /// Resolves the box `b` with candidate sites `sites` (sorted) and boundary `ports`.
+    pub fn resolve(&mut self, b: Aabb, sites: &[u32], ports: Vec<Port>, out: &mut LeafOutput) {
+        if sites.len() <= 1 || (ports.is_empty() && self.no_island(b, sites)) {
+            return;
+        }
+        if b.longest_side() <= self.tol.min_box {
+            self.fallback(b, sites, &ports, out);
+            return;
+        }
+        let states: Vec<(u32, F::State)> = sites
+            .iter()
+            .map(|&s| (s, self.fields[s as usize].state(&b)))
+            .collect();
+        let active = filter::lower_envelope(self.fields, &b, states);
+        let ids: Vec<u32> = active.iter().map(|s| s.0).collect();
+        let labels_known = ports.iter().all(|p| p.pair.iter().all(|l| ids.contains(l)));
+        if labels_known {
+            match filter::certify(self.fields, &b, &active) {
+                Certificate::Monotone { over_y } => {
+                    self.join_monotone(&ports, over_y, out);
+                    return;
+                }
+                Certificate::SingleVertex if self.try_vertex(&b, &active, &ports, out) => return,
+                _ => {}
+            }
+            if active.len() <= 1 && ports.is_empty() {
+                return;
+            }
+        }
+        self.split(b, &ids, ports, out);
+    }
+
+    /// With no port, a cell can still lie wholly inside the box (an island); it cannot
+    /// when the box holds two sites whose bisector is monotone.
+    fn no_island(&self, b: Aabb, sites: &[u32]) -> bool {
+        let states: Vec<(u32, F::State)> = sites
+            .iter()
+            .map(|&s| (s, self.fields[s as usize].state(&b)))
+            .collect();
+        let active = filter::lower_envelope(self.fields, &b, states);
+        active.len() <= 1
+            || matches!(
+                filter::certify(self.fields, &b, &active),
+                Certificate::Monotone { .. }
+            )
+    }
+
+    /// Two sites with a monotone bisector: its arcs are graphs over one axis with disjoint
+    /// ranges, so the ports sorted along that axis pair up consecutively.
+    fn join_monotone(&self, ports: &[Port], over_y: bool, out: &mut LeafOutput) {
+        let mut sorted: Vec<&Port> = ports.iter().collect();
+        sorted.sort_by(|p, q| {
+            let (a, b) = if over_y {
+                (p.at.y, q.at.y)
+            } else {
+                (p.at.x, q.at.x)
+            };
+            a.total_cmp(&b)
+        });
+        for pq in sorted.chunks(2) {
+            if let [p, q] = pq {
+                self.piece(p.pair, End::Port(p.id), p.at, End::Port(q.id), q.at, out);
+            }
+        }
+    }
+
+    /// Three sites with at most one vertex: if Newton finds it and each pair crosses the
+    /// boundary once, the three ports meet there; with no vertex, each pair must have
+    /// an even number of ports and a monotone bisector. Returns false when neither holds.
+    fn try_vertex(
+        &self,
+        b: &Aabb,
+        active: &[(u32, F::State)],
+        ports: &[Port],
+        out: &mut LeafOutput,
+    ) -> bool {
+        let s = [active[0].0, active[1].0, active[2].0];
+        let count = |x: u32, y: u32| ports.iter().filter(|p| same_pair(p.pair, x, y)).count();
+        let counts = [count(s[0], s[1]), count(s[0], s[2]), count(s[1], s[2])];
+        if let Some(v) = trace::vertex(self.fields, s, b) {
+            if counts != [1, 1, 1] {
+                return false;
+            }
+            let vi = out.vertices.len() as u32;
+            out.vertices.push(FoundVertex {
+                at: v,
+                sites: sorted3(s),
+            });
+            for p in ports {
+                self.piece(p.pair, End::Port(p.id), p.at, End::Vertex(vi), v, out);
+            }
+            return true;
+        }
+        let pairs = [(0, 1), (0, 2), (1, 2)];
+        let mut plan = Vec::new();
+        for (k, &(i, j)) in pairs.iter().enumerate() {
+            if counts[k] == 0 {
+                continue;
+            }
+            let p = filter::pair(self.fields, active, i, j, b);
+            match filter::monotone(&p) {
+                Some(over_y) if counts[k] % 2 == 0 => plan.push((s[i], s[j], over_y)),
+                _ => return false,
+            }
+        }
+        for (x, y, over_y) in plan {
+            let mine: Vec<Port> = ports
+                .iter()
+                .filter(|p| same_pair(p.pair, x, y))
+                .copied()
+                .collect();
+            self.join_monotone(&mine, over_y, out);
+        }
+        true
+    }
+
+    /// Splits the box in halves along its longer side, scans the split line for label
+    /// changes (new inner ports) and resolves both halves.
+    fn split(&mut self, b: Aabb, sites: &[u32], ports: Vec<Port>, out: &mut LeafOutput) {
+        out.local_splits += 1;
+        let axis = if b.width() >= b.height() {
+            Axis::X
+        } else {
+            Axis::Y
+        };
+        let mid = b.center().coord(axis);
+        let (lo, hi) = b.split(axis, mid);
+        let (p0, p1) = match axis {
+            Axis::X => (Point::new(mid, b.min.y), Point::new(mid, b.max.y)),
+            Axis::Y => (Point::new(b.min.x, mid), Point::new(b.max.x, mid)),
+        };
+        let inner: Vec<Port> = transitions(self.fields, sites, p0, p1, self.tol.scan)
+            .into_iter()
+            .map(|t| {
+                let id = PortId::Inner {
+                    leaf: self.leaf,
+                    index: self.next_inner,
+                };
+                self.next_inner += 1;
+                Port {
+                    id,
+                    at: t.at,
+                    pair: t.pair,
+                }
+            })
+            .collect();
+        let (mut lower, mut upper): (Vec<Port>, Vec<Port>) =
+            ports.into_iter().partition(|p| p.at.coord(axis) <= mid);
+        lower.extend_from_slice(&inner);
+        upper.extend(inner);
+        self.resolve(lo, sites, lower, out);
+        self.resolve(hi, sites, upper, out);
+    }
+
+    /// At the resolution cut-off: one vertex at the box centre joins all ports when three
+    /// or more labels meet; with two labels the ports pair up around the boundary so that
+    /// the centre's label stays connected.
+    fn fallback(&self, b: Aabb, sites: &[u32], ports: &[Port], out: &mut LeafOutput) {
+        if ports.is_empty() {
+            return;
+        }
+        out.uncertified += 1;
+        let mut labels: Vec<u32> = ports.iter().flat_map(|p| p.pair).collect();
+        labels.sort_unstable();
+        labels.dedup();
+        let c = b.center();
+        if labels.len() >= 3 || ports.len() % 2 == 1 {
+            let vi = out.vertices.len() as u32;
+            out.vertices.push(FoundVertex {
+                at: c,
+                sites: labels,
+            });
+            for p in ports {
+                out.pieces.push(Piece {
+                    pair: ordered(p.pair),
+                    ends: [End::Port(p.id), End::Vertex(vi)],
+                    points: vec![p.at, c],
+                });
+            }
+            return;
+        }
+        let mut cyc: Vec<&Port> = ports.iter().collect();
+        cyc.sort_by(|p, q| perimeter(&b, p.at).total_cmp(&perimeter(&b, q.at)));
+        let centre = label(self.fields, sites, c);
+        // the arc after cyc[0] (towards cyc[1]) has label `after`: pairing (0,1),(2,3)...
+        // cuts those arcs off from the centre, so they must not carry the centre's label
+        let after = label(self.fields, sites, arc_point(&b, cyc[0].at, cyc[1].at));
+        let shift = usize::from(after == centre);
+        let n = cyc.len();
+        for k in (0..n).step_by(2) {
+            let (p, q) = (cyc[(k + shift) % n], cyc[(k + shift + 1) % n]);
+            out.pieces.push(Piece {
+                pair: ordered(p.pair),
+                ends: [End::Port(p.id), End::Port(q.id)],
+                points: vec![p.at, q.at],
+            });
+        }
+    }
+
+    fn piece(&self, pair: [u32; 2], e0: End, p: Point, e1: End, q: Point, out: &mut LeafOutput) {
+        let pair = ordered(pair);
+        let points = trace::trace(self.fields, pair[0], pair[1], p, q, self.tol.trace);
+        out.pieces.push(Piece {
+            pair,
+            ends: [e0, e1],
+            points,
+        });
+    }
+}
+
+fn same_pair(p: [u32; 2], x: u32, y: u32) -> bool {
+    (p[0] == x && p[1] == y) || (p[0] == y && p[1] == x)
+}
+
+fn ordered(p: [u32; 2]) -> [u32; 2] {
+    [p[0].min(p[1]), p[0].max(p[1])]
+}
+
+fn sorted3(mut s: [u32; 3]) -> Vec<u32> {
+    s.sort_unstable();
+    s.to_vec()
+}
+
+/// The arc-length position of a boundary point, counter-clockwise from `b.min`.
+fn perimeter(b: &Aabb, p: Point) -> f64 {
+    let (w, h) = (b.width(), b.height());
+    let d = [
+        (p.y - b.min.y).abs(),
+        (p.x - b.max.x).abs(),
+        (p.y - b.max.y).abs(),
+        (p.x - b.min.x).abs(),
+    ];
+    let side = (0..4).min_by(|&i, &j| d[i].total_cmp(&d[j])).unwrap_or(0);
+    match side {
+        0 => p.x - b.min.x,
+        1 => w + (p.y - b.min.y),
+        2 => w + h + (b.max.x - p.x),
+        _ => 2.0 * w + h + (b.max.y - p.y),
+    }
+}
+
+/// A boundary point between `p` and `q`, counter-clockwise from `p`.
+fn arc_point(b: &Aabb, p: Point, q: Point) -> Point {
+    let (w, h) = (b.width(), b.height());
+    let total = 2.0 * (w + h);
+    let (s, t) = (perimeter(b, p), perimeter(b, q));
+    let t = if t < s { t + total } else { t };
+    let m = (0.5 * (s + t)) % total;
+    if m < w {
+        Point::new(b.min.x + m, b.min.y)
+    } else if m < w + h {
+        Point::new(b.max.x, b.min.y + (m - w))
+    } else if m < 2.0 * w + h {
+        Point::new(b.max.x - (m - w - h), b.max.y)
+    } else {
+        Point::new(b.min.x, b.max.y - (m - 2.0 * w - h))
+    }
+}

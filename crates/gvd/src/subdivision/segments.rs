@@ -1,0 +1,321 @@
+//! The sides of the leaves, cut into elementary segments where a neighbour's corner
+//! falls (T-junctions), and the label changes of the lower envelope along each segment.
+//!
+//! A segment is computed once and shared by the two leaves it separates, so both see the
+//! same transitions: the global diagram is stitched through them.
+
+use super::tree::{Lattice, Leaf};
+use crate::geom::{Aabb, Point};
+use crate::site::DistanceField;
+
+/// An elementary segment: a piece of a leaf side between two lattice nodes, with the
+/// leaves on its two sides (`None` outside the domain).
+#[derive(Clone, Debug)]
+pub struct Segment {
+    pub from: Point,
+    pub to: Point,
+    pub leaves: [Option<u32>; 2],
+}
+
+/// A point where the nearest site changes from `pair[0]` to `pair[1]` along a segment.
+#[derive(Clone, Copy, Debug)]
+pub struct Transition {
+    pub at: Point,
+    pub pair: [u32; 2],
+}
+
+struct Side {
+    line: u64,
+    after: bool,
+    lo: u64,
+    hi: u64,
+    leaf: u32,
+}
+
+/// All elementary segments, and for each leaf the indices of the segments on its
+/// boundary (compressed rows: `rows[l]..rows[l + 1]` in `members`).
+pub struct Segments {
+    pub segments: Vec<Segment>,
+    pub rows: Vec<usize>,
+    pub members: Vec<u32>,
+}
+
+pub fn build(leaves: &[Leaf], lattice: &Lattice) -> Segments {
+    let mut segments = Vec::new();
+    for axis in 0..2 {
+        // sides perpendicular to `axis` lie on lines `coord[axis] = const`
+        let other = 1 - axis;
+        let mut sides: Vec<Side> = Vec::with_capacity(2 * leaves.len());
+        for (k, l) in leaves.iter().enumerate() {
+            let (lo, hi) = (l.ib.lo[other], l.ib.hi[other]);
+            sides.push(Side {
+                line: l.ib.lo[axis],
+                after: true,
+                lo,
+                hi,
+                leaf: k as u32,
+            });
+            sides.push(Side {
+                line: l.ib.hi[axis],
+                after: false,
+                lo,
+                hi,
+                leaf: k as u32,
+            });
+        }
+        sides.sort_unstable_by_key(|s| (s.line, s.after, s.lo));
+        let mut start = 0;
+        while start < sides.len() {
+            let line = sides[start].line;
+            let end = start + sides[start..].partition_point(|s| s.line == line);
+            let mid = start + sides[start..end].partition_point(|s| !s.after);
+            merge_line(
+                &sides[start..mid],
+                &sides[mid..end],
+                axis,
+                line,
+                lattice,
+                &mut segments,
+            );
+            start = end;
+        }
+    }
+    let mut counts = vec![0usize; leaves.len() + 1];
+    for s in &segments {
+        for l in s.leaves.iter().flatten() {
+            counts[*l as usize + 1] += 1;
+        }
+    }
+    for k in 1..counts.len() {
+        counts[k] += counts[k - 1];
+    }
+    let mut fill = counts.clone();
+    let mut members = vec![0u32; counts[leaves.len()]];
+    for (i, s) in segments.iter().enumerate() {
+        for l in s.leaves.iter().flatten() {
+            members[fill[*l as usize]] = i as u32;
+            fill[*l as usize] += 1;
+        }
+    }
+    Segments {
+        segments,
+        rows: counts,
+        members,
+    }
+}
+
+/// Cuts one lattice line into segments: `before` are the sides of leaves ending on the
+/// line, `after` those of leaves starting on it, each sorted along the line.
+fn merge_line(
+    before: &[Side],
+    after: &[Side],
+    axis: usize,
+    line: u64,
+    lattice: &Lattice,
+    out: &mut Vec<Segment>,
+) {
+    let point = |t: u64| {
+        if axis == 0 {
+            lattice.point(line, t)
+        } else {
+            lattice.point(t, line)
+        }
+    };
+    let mut push = |lo: u64, hi: u64, a: Option<u32>, b: Option<u32>| {
+        out.push(Segment {
+            from: point(lo),
+            to: point(hi),
+            leaves: [a, b],
+        });
+    };
+    if before.is_empty() || after.is_empty() {
+        for s in before.iter().chain(after) {
+            push(s.lo, s.hi, Some(s.leaf), None);
+        }
+        return;
+    }
+    let (mut i, mut j) = (0, 0);
+    while i < before.len() && j < after.len() {
+        let (a, b) = (&before[i], &after[j]);
+        let lo = a.lo.max(b.lo);
+        let hi = a.hi.min(b.hi);
+        if lo < hi {
+            push(lo, hi, Some(a.leaf), Some(b.leaf));
+        }
+        if a.hi <= b.hi {
+            i += 1;
+        } else {
+            j += 1;
+        }
+    }
+}
+
+/// The nearest of `cands` at `q`; ties go to the smallest site index, so every caller
+/// labels a point alike whatever superset of the true nearest sites it passes.
+pub fn label<F: DistanceField>(fields: &[F], cands: &[u32], q: Point) -> u32 {
+    let mut best = cands[0];
+    let mut best_v = fields[best as usize].value(q);
+    for &c in &cands[1..] {
+        let v = fields[c as usize].value(q);
+        if v < best_v || (v == best_v && c < best) {
+            best = c;
+            best_v = v;
+        }
+    }
+    best
+}
+
+/// The label changes along the segment `p0 → p1` among the sorted site list `cands`,
+/// in order from `p0`. Sub-segments are discarded by the same lower-envelope filter as
+/// boxes; label changes are isolated to `min_len` and then refined to full precision.
+pub fn transitions<F: DistanceField>(
+    fields: &[F],
+    cands: &[u32],
+    p0: Point,
+    p1: Point,
+    min_len: f64,
+) -> Vec<Transition> {
+    let mut out = Vec::new();
+    if cands.len() < 2 {
+        return out;
+    }
+    let b = Aabb::new(
+        Point::new(p0.x.min(p1.x), p0.y.min(p1.y)),
+        Point::new(p0.x.max(p1.x), p0.y.max(p1.y)),
+    );
+    let sites: Vec<(u32, F::State)> = cands
+        .iter()
+        .map(|&c| (c, fields[c as usize].state(&b)))
+        .collect();
+    let scan = Scan {
+        fields,
+        p0,
+        p1,
+        len: p0.dist(p1),
+        min_len,
+    };
+    let l0 = label(fields, cands, p0);
+    let l1 = label(fields, cands, p1);
+    scan.rec(0.0, 1.0, l0, l1, b, sites, &mut out);
+    out
+}
+
+struct Scan<'a, F> {
+    fields: &'a [F],
+    p0: Point,
+    p1: Point,
+    len: f64,
+    min_len: f64,
+}
+
+impl<F: DistanceField> Scan<'_, F> {
+    fn at(&self, t: f64) -> Point {
+        if t == 1.0 {
+            self.p1
+        } else {
+            self.p0.lerp(self.p1, t)
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn rec(
+        &self,
+        t0: f64,
+        t1: f64,
+        l0: u32,
+        l1: u32,
+        b: Aabb,
+        sites: Vec<(u32, F::State)>,
+        out: &mut Vec<Transition>,
+    ) {
+        let sites = super::filter::lower_envelope(self.fields, &b, sites);
+        if sites.len() <= 1 && l0 == l1 {
+            return;
+        }
+        let short = (t1 - t0) * self.len <= self.min_len;
+        let simple = sites.len() == 2 && {
+            // one root at most when h is monotone along the segment
+            let p = super::filter::pair(self.fields, &sites, 0, 1, &b);
+            p.gradient.is_some_and(|g| {
+                let d = self.p1 - self.p0;
+                (g[0].scale(d.x) + g[1].scale(d.y)).excludes_zero()
+            })
+        };
+        if short || simple || sites.len() <= 1 {
+            if l0 != l1 {
+                let cands: Vec<u32> = sites.iter().map(|s| s.0).collect();
+                self.refine(t0, t1, l0, l1, &cands, out);
+            }
+            return;
+        }
+        let tm = 0.5 * (t0 + t1);
+        let pm = self.at(tm);
+        let cands: Vec<u32> = sites.iter().map(|s| s.0).collect();
+        let lm = label(self.fields, &cands, pm);
+        let axis = if b.width() >= b.height() {
+            crate::geom::Axis::X
+        } else {
+            crate::geom::Axis::Y
+        };
+        let at = pm.coord(axis);
+        let (lb, rb) = b.split(axis, at);
+        let mut lower = Vec::with_capacity(sites.len());
+        let mut upper = Vec::with_capacity(sites.len());
+        for (i, s) in &sites {
+            let (l, r) = self.fields[*i as usize].split(s, &b, axis, at);
+            lower.push((*i, l));
+            upper.push((*i, r));
+        }
+        // the half nearer p0 comes first along the segment
+        let forward = self.p1.coord(axis) >= self.p0.coord(axis);
+        let (first, second) = if forward {
+            ((lb, lower), (rb, upper))
+        } else {
+            ((rb, upper), (lb, lower))
+        };
+        self.rec(t0, tm, l0, lm, first.0, first.1, out);
+        self.rec(tm, t1, lm, l1, second.0, second.1, out);
+    }
+
+    /// Bisection on the label between `t0` (label `l0`) and `t1` (label `l1`); a third
+    /// label met on the way splits the search in two.
+    fn refine(
+        &self,
+        mut t0: f64,
+        mut t1: f64,
+        l0: u32,
+        l1: u32,
+        cands: &[u32],
+        out: &mut Vec<Transition>,
+    ) {
+        let cands: Vec<u32> = {
+            let mut c = cands.to_vec();
+            for l in [l0, l1] {
+                if let Err(k) = c.binary_search(&l) {
+                    c.insert(k, l);
+                }
+            }
+            c
+        };
+        for _ in 0..64 {
+            let tm = 0.5 * (t0 + t1);
+            if tm <= t0 || tm >= t1 {
+                break;
+            }
+            let lm = label(self.fields, &cands, self.at(tm));
+            if lm == l0 {
+                t0 = tm;
+            } else if lm == l1 {
+                t1 = tm;
+            } else {
+                self.refine(t0, tm, l0, lm, &cands, out);
+                self.refine(tm, t1, lm, l1, &cands, out);
+                return;
+            }
+        }
+        out.push(Transition {
+            at: self.at(0.5 * (t0 + t1)),
+            pair: [l0, l1],
+        });
+    }
+}

@@ -1,0 +1,136 @@
+//! Bisector tracing inside a box, and the Voronoi vertex solver.
+
+use crate::geom::{Aabb, Point};
+use crate::site::DistanceField;
+
+/// `f_a(q) − f_b(q)`.
+#[inline]
+pub fn diff<F: DistanceField>(fields: &[F], a: u32, b: u32, q: Point) -> f64 {
+    fields[a as usize].value(q) - fields[b as usize].value(q)
+}
+
+/// Moves `m` along the unit normal `n` onto the bisector `f_a = f_b`, to the sign change
+/// nearest `m` within distance `reach`; `None` when there is none.
+pub fn project<F: DistanceField>(
+    fields: &[F],
+    a: u32,
+    b: u32,
+    m: Point,
+    n: Point,
+    reach: f64,
+) -> Option<Point> {
+    let h0 = diff(fields, a, b, m);
+    if h0 == 0.0 {
+        return Some(m);
+    }
+    let mut found = None;
+    'search: for frac in [1.0 / 64.0, 1.0 / 16.0, 0.25, 0.5, 1.0] {
+        for sign in [1.0, -1.0] {
+            let t = sign * frac * reach;
+            let h = diff(fields, a, b, m + n * t);
+            if (h > 0.0) != (h0 > 0.0) || h == 0.0 {
+                found = Some(t);
+                break 'search;
+            }
+        }
+    }
+    let t1 = found?;
+    let (mut lo, mut hi) = (0.0f64, t1);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if mid == lo || mid == hi {
+            break;
+        }
+        let h = diff(fields, a, b, m + n * mid);
+        if (h > 0.0) == (h0 > 0.0) && h != 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(m + n * (0.5 * (lo + hi)))
+}
+
+/// A polyline from `p` to `q` (both on the bisector of `a` and `b`) whose points lie on
+/// the bisector and whose chords stay within `tol` of it: chords are halved until their
+/// midpoint and quarter points project onto the curve within `tol`.
+pub fn trace<F: DistanceField>(
+    fields: &[F],
+    a: u32,
+    b: u32,
+    p: Point,
+    q: Point,
+    tol: f64,
+) -> Vec<Point> {
+    let mut out = vec![p];
+    chord(fields, a, b, p, q, tol, 0, &mut out);
+    out
+}
+
+#[allow(clippy::too_many_arguments)]
+fn chord<F: DistanceField>(
+    fields: &[F],
+    a: u32,
+    b: u32,
+    p: Point,
+    q: Point,
+    tol: f64,
+    depth: u32,
+    out: &mut Vec<Point>,
+) {
+    let d = q - p;
+    let len = d.norm();
+    if len <= tol || depth >= 24 {
+        out.push(q);
+        return;
+    }
+    let n = d.perp() * (1.0 / len);
+    let reach = 0.5 * len;
+    let mid = project(fields, a, b, p.lerp(q, 0.5), n, reach);
+    let Some(m) = mid else {
+        out.push(q);
+        return;
+    };
+    let off = |t: f64| {
+        project(fields, a, b, p.lerp(q, t), n, reach).map_or(0.0, |r| (r - p.lerp(q, t)).norm())
+    };
+    if (m - p.lerp(q, 0.5)).norm() <= tol && off(0.25) <= tol && off(0.75) <= tol {
+        out.push(q);
+        return;
+    }
+    chord(fields, a, b, p, m, tol, depth + 1, out);
+    chord(fields, a, b, m, q, tol, depth + 1, out);
+}
+
+/// The point of `bx` where `f_a = f_b = f_c`, by Newton's method from the box centre;
+/// `None` when it does not converge inside the box.
+pub fn vertex<F: DistanceField>(fields: &[F], s: [u32; 3], bx: &Aabb) -> Option<Point> {
+    let mut q = bx.center();
+    let scale = bx.longest_side();
+    let mut converged = false;
+    for _ in 0..40 {
+        let fa = fields[s[0] as usize].value(q);
+        let r1 = fa - fields[s[1] as usize].value(q);
+        let r2 = fa - fields[s[2] as usize].value(q);
+        let ga = fields[s[0] as usize].gradient(q);
+        let j1 = ga - fields[s[1] as usize].gradient(q);
+        let j2 = ga - fields[s[2] as usize].gradient(q);
+        let det = j1.cross(j2);
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        // solve [j1; j2] Δ = −(r1, r2)
+        let dx = (-r1 * j2.y + r2 * j1.y) / det;
+        let dy = (-r2 * j1.x + r1 * j2.x) / det;
+        let step = Point::new(dx, dy);
+        q = q + step;
+        if !q.x.is_finite() || bx.outside_distance(q) > scale {
+            return None;
+        }
+        if step.norm() <= 1e-14 * (scale + q.norm()) {
+            converged = true;
+            break;
+        }
+    }
+    (converged && bx.contains(q)).then_some(q)
+}

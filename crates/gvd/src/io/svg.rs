@@ -1,0 +1,434 @@
+//! A small SVG writer: the domain frame, cells, edges, vertices and sites of a diagram,
+//! with `y` pointing up. Numbers are printed with a fixed number of decimals chosen from
+//! the domain size (about 6 significant digits, never in exponent notation), so the
+//! output is byte-identical across runs and platforms.
+
+use crate::complex::VoronoiComplex;
+use crate::geom::{Aabb, Point};
+use crate::scene::{Scene, SiteKind};
+use std::f64::consts::TAU;
+use std::fmt::Write;
+
+/// Drawing options.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SvgOptions {
+    /// Subdivision boxes with their number of active sites, drawn as thin outlines
+    /// coloured by the count, under everything else.
+    pub boxes: Vec<(Aabb, usize)>,
+    /// The picture's width in pixels (the height follows the domain's aspect).
+    pub width_px: f64,
+}
+
+impl Default for SvgOptions {
+    fn default() -> Self {
+        SvgOptions {
+            boxes: Vec::new(),
+            width_px: 800.0,
+        }
+    }
+}
+
+/// Fixed-decimal number formatting and the flip `(x, y) ↦ (x, −y)`.
+struct Fmt {
+    decimals: usize,
+}
+
+impl Fmt {
+    fn num(&self, v: f64) -> String {
+        let s = format!("{:.*}", self.decimals, v);
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            &s
+        };
+        if s == "-0" {
+            "0".into()
+        } else {
+            s.into()
+        }
+    }
+    /// `x,y` in SVG coordinates.
+    fn pt(&self, p: Point) -> String {
+        format!("{},{}", self.num(p.x), self.num(-p.y))
+    }
+    /// A path through `points`, closed with `Z` if `close`.
+    fn path(&self, d: &mut String, points: &[Point], close: bool) {
+        for (i, &p) in points.iter().enumerate() {
+            d.push(if i == 0 { 'M' } else { 'L' });
+            d.push_str(&self.pt(p));
+        }
+        if close && !points.is_empty() {
+            d.push('Z');
+        }
+    }
+}
+
+/// A light pastel colour for site `i` (hues spaced by the golden ratio).
+fn pastel(i: usize) -> String {
+    let h = (i as f64 * 0.618_033_988_749_895).fract() * 6.0;
+    let (s, l) = (0.55, 0.85);
+    let c = (1.0 - (2.0 * l - 1.0f64).abs()) * s;
+    let x = c * (1.0 - (h % 2.0 - 1.0).abs());
+    let (r, g, b) = match h as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let m = l - c / 2.0;
+    let byte = |v: f64| ((v + m) * 255.0).round().clamp(0.0, 255.0) as u8;
+    format!("#{:02x}{:02x}{:02x}", byte(r), byte(g), byte(b))
+}
+
+/// The outline colour of a subdivision box with `n` active sites.
+fn box_colour(n: usize) -> &'static str {
+    match n {
+        0 => "#bdbdbd",
+        1 => "#43a047",
+        2 => "#1e88e5",
+        3 => "#fb8c00",
+        _ => "#e53935",
+    }
+}
+
+/// Points along a (rational) Bézier curve by de Casteljau's algorithm in homogeneous
+/// coordinates.
+fn bezier_points(cp: &[Point], w: Option<&[f64]>, n: usize) -> Vec<Point> {
+    (0..=n)
+        .map(|k| {
+            let t = k as f64 / n as f64;
+            let mut h: Vec<(f64, f64, f64)> = cp
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    let wi = w.and_then(|w| w.get(i)).copied().unwrap_or(1.0);
+                    (p.x * wi, p.y * wi, wi)
+                })
+                .collect();
+            for r in 1..h.len() {
+                for i in 0..h.len() - r {
+                    let (a, b) = (h[i], h[i + 1]);
+                    h[i] = (
+                        a.0 + (b.0 - a.0) * t,
+                        a.1 + (b.1 - a.1) * t,
+                        a.2 + (b.2 - a.2) * t,
+                    );
+                }
+            }
+            Point::new(h[0].0 / h[0].2, h[0].1 / h[0].2)
+        })
+        .collect()
+}
+
+/// Renders the diagram of `scene` as an SVG document.
+pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) -> String {
+    let dom = scene.domain;
+    let size = dom.longest_side();
+    let f = Fmt {
+        decimals: (5 - size.log10().floor() as i64).clamp(0, 15) as usize,
+    };
+    let margin = 0.03 * size;
+    let (vw, vh) = (dom.width() + 2.0 * margin, dom.height() + 2.0 * margin);
+    let (x0, y0) = (dom.min.x - margin, -(dom.max.y + margin));
+    let sw = |k: f64| f.num(k * size);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"{} {} {} {}\">",
+        opts.width_px.round(),
+        (opts.width_px * vh / vw).round(),
+        f.num(x0),
+        f.num(y0),
+        f.num(vw),
+        f.num(vh)
+    );
+    let rect = |b: Aabb| {
+        format!(
+            "x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"",
+            f.num(b.min.x),
+            f.num(-b.max.y),
+            f.num(b.width()),
+            f.num(b.height())
+        )
+    };
+    let _ = writeln!(
+        s,
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\"/>",
+        f.num(x0),
+        f.num(y0),
+        f.num(vw),
+        f.num(vh)
+    );
+    if !opts.boxes.is_empty() {
+        let _ = writeln!(
+            s,
+            "<g id=\"boxes\" fill=\"none\" stroke-width=\"{}\">",
+            sw(0.0008)
+        );
+        for &(b, n) in &opts.boxes {
+            let _ = writeln!(s, "<rect {} stroke=\"{}\"/>", rect(b), box_colour(n));
+        }
+        s.push_str("</g>\n");
+    }
+    if !diagram.cells.is_empty() {
+        s.push_str("<g id=\"cells\" stroke=\"none\" fill-opacity=\"0.7\" fill-rule=\"evenodd\">\n");
+        for c in &diagram.cells {
+            let mut d = String::new();
+            for ring in &c.rings {
+                f.path(&mut d, ring, true);
+            }
+            let _ = writeln!(s, "<path d=\"{d}\" fill=\"{}\"/>", pastel(c.site));
+        }
+        s.push_str("</g>\n");
+    }
+    let _ = writeln!(
+        s,
+        "<rect id=\"domain\" {} fill=\"none\" stroke=\"#555555\" stroke-width=\"{}\"/>",
+        rect(dom),
+        sw(0.002)
+    );
+    let _ = writeln!(
+        s,
+        "<g id=\"edges\" fill=\"none\" stroke=\"#1a1a2e\" stroke-width=\"{}\" stroke-linejoin=\"round\" stroke-linecap=\"round\">",
+        sw(0.0025)
+    );
+    for e in &diagram.edges {
+        let pts: Vec<String> = e.points.iter().map(|&p| f.pt(p)).collect();
+        let _ = writeln!(s, "<polyline points=\"{}\"/>", pts.join(" "));
+    }
+    s.push_str("</g>\n");
+    write_sites(&mut s, scene, &f, size);
+    let _ = writeln!(s, "<g id=\"vertices\" fill=\"#d32f2f\">");
+    for v in &diagram.vertices {
+        let _ = writeln!(
+            s,
+            "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
+            f.num(v.at.x),
+            f.num(-v.at.y),
+            sw(0.003)
+        );
+    }
+    s.push_str("</g>\n</svg>\n");
+    s
+}
+
+/// The sites: points as dots, circles and ellipses as outlines, curves as strokes;
+/// field sites are not drawn.
+fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
+    let _ = writeln!(
+        s,
+        "<g id=\"sites\" fill=\"none\" stroke=\"#000000\" stroke-width=\"{}\">",
+        f.num(0.002 * size)
+    );
+    let stroke = |s: &mut String, pts: &[Point], close: bool, extra: &str| {
+        let mut d = String::new();
+        f.path(&mut d, pts, close);
+        let _ = writeln!(s, "<path d=\"{d}\"{extra}/>");
+    };
+    for site in &scene.sites {
+        match &site.kind {
+            SiteKind::Point { at, .. } => {
+                let _ = writeln!(
+                    s,
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"#000000\" stroke=\"none\"/>",
+                    f.num(at.x),
+                    f.num(-at.y),
+                    f.num(0.004 * size)
+                );
+            }
+            SiteKind::Circle { center, radius } => {
+                let _ = writeln!(
+                    s,
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
+                    f.num(center.x),
+                    f.num(-center.y),
+                    f.num(*radius)
+                );
+            }
+            SiteKind::Ellipse {
+                center,
+                semi_axes,
+                rotation,
+            } => {
+                let (cx, cy) = (f.num(center.x), f.num(-center.y));
+                let _ = writeln!(
+                    s,
+                    "<ellipse cx=\"{cx}\" cy=\"{cy}\" rx=\"{}\" ry=\"{}\" transform=\"rotate({} {cx} {cy})\"/>",
+                    f.num(semi_axes[0]),
+                    f.num(semi_axes[1]),
+                    f.num(-rotation.to_degrees())
+                );
+            }
+            SiteKind::Segment { from, to } => stroke(s, &[*from, *to], false, ""),
+            SiteKind::Arc {
+                center,
+                radius,
+                start_angle,
+                end_angle,
+            } => {
+                let d = end_angle - start_angle;
+                let sweep = if d >= TAU || (d != 0.0 && d.rem_euclid(TAU) == 0.0) {
+                    TAU
+                } else {
+                    d.rem_euclid(TAU)
+                };
+                let pts: Vec<Point> = (0..=64)
+                    .map(|k| {
+                        let a = start_angle + sweep * k as f64 / 64.0;
+                        *center + Point::new(a.cos(), a.sin()) * *radius
+                    })
+                    .collect();
+                stroke(s, &pts, false, "");
+            }
+            SiteKind::Polyline { points } => stroke(s, points, false, ""),
+            SiteKind::Polygon { rings } => {
+                let mut d = String::new();
+                for r in rings {
+                    f.path(&mut d, r, true);
+                }
+                let _ = writeln!(
+                    s,
+                    "<path d=\"{d}\" fill=\"#e0e0e0\" fill-rule=\"evenodd\"/>"
+                );
+            }
+            SiteKind::Bezier {
+                control_points,
+                weights,
+            } => stroke(
+                s,
+                &bezier_points(control_points, weights.as_deref(), 64),
+                false,
+                "",
+            ),
+            SiteKind::Bspline { control_points, .. } => {
+                let dash = format!(" stroke-dasharray=\"{}\"", f.num(0.01 * size));
+                stroke(s, control_points, false, &dash);
+            }
+            SiteKind::Algebraic { .. }
+            | SiteKind::Field { .. }
+            | SiteKind::ImplicitField { .. } => {}
+        }
+    }
+    s.push_str("</g>\n");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::complex::{Cell, Edge, Generator, Vertex};
+    use crate::scene::{Metric, Mode, Site};
+
+    /// Every opened tag is closed in order (a simple well-formedness check).
+    fn balanced(svg: &str) -> bool {
+        let mut stack: Vec<&str> = Vec::new();
+        let mut rest = svg;
+        while let Some(i) = rest.find('<') {
+            let Some(j) = rest[i..].find('>') else {
+                return false;
+            };
+            let tag = &rest[i + 1..i + j];
+            rest = &rest[i + j + 1..];
+            if tag.contains('<') || tag.matches('"').count() % 2 != 0 {
+                return false;
+            }
+            if let Some(name) = tag.strip_prefix('/') {
+                if stack.pop() != Some(name) {
+                    return false;
+                }
+            } else if !tag.ends_with('/') {
+                stack.push(tag.split_whitespace().next().unwrap_or(""));
+            }
+        }
+        stack.is_empty()
+    }
+
+    #[test]
+    fn well_formed_and_deterministic() {
+        let site = |kind| Site { id: None, kind };
+        let p = |x, y| Point::new(x, y);
+        let scene = Scene {
+            domain: Aabb::from_array([-2.0, -1.0, 2.0, 1.0]),
+            epsilon: 1e-3,
+            mode: Mode::Voronoi,
+            sites: vec![
+                site(SiteKind::Point {
+                    at: p(-1.0, 0.0),
+                    metric: Metric::Euclidean,
+                }),
+                site(SiteKind::Circle {
+                    center: p(1.0, 0.0),
+                    radius: 0.25,
+                }),
+                site(SiteKind::Ellipse {
+                    center: p(0.0, 0.5),
+                    semi_axes: [0.3, 0.1],
+                    rotation: 0.5,
+                }),
+                site(SiteKind::Arc {
+                    center: p(0.0, -0.5),
+                    radius: 0.2,
+                    start_angle: 0.0,
+                    end_angle: 3.0,
+                }),
+                site(SiteKind::Bezier {
+                    control_points: vec![p(1.0, 0.5), p(1.5, 0.9), p(1.9, 0.5)],
+                    weights: None,
+                }),
+            ],
+        };
+        let g = Generator::Site;
+        let diagram = VoronoiComplex {
+            vertices: vec![Vertex {
+                at: p(0.0, 0.0),
+                sites: vec![g(0), g(1), g(2)],
+            }],
+            edges: vec![
+                Edge {
+                    sites: [g(0), g(1)],
+                    from: Some(0),
+                    to: None,
+                    points: vec![p(0.0, 0.0), p(0.1, -0.5), p(0.0, -1.0)],
+                },
+                Edge {
+                    sites: [g(0), g(2)],
+                    from: Some(0),
+                    to: None,
+                    points: vec![p(0.0, 0.0), p(-2.0, 1.0)],
+                },
+            ],
+            cells: vec![Cell {
+                site: 0,
+                rings: vec![vec![p(-2.0, -1.0), p(0.0, 0.0), p(-2.0, 1.0)]],
+            }],
+            ..Default::default()
+        };
+        let opts = SvgOptions {
+            boxes: vec![(Aabb::from_array([-2.0, -1.0, 0.0, 0.0]), 3)],
+            ..Default::default()
+        };
+        let a = render_svg(&scene, &diagram, &opts);
+        let b = render_svg(&scene, &diagram, &opts);
+        assert_eq!(a, b);
+        assert!(balanced(&a), "{a}");
+        assert_eq!(a.matches("<polyline").count(), diagram.edges.len());
+        assert!(a.contains("viewBox=\"-2.12 -1.12 4.24 2.24\""), "{a}");
+        assert!(a.contains("<polyline points=\"0,0 0.1,0.5 0,1\"/>"), "{a}");
+        // no exponent notation, no non-finite numbers
+        for value in a
+            .split('"')
+            .skip(1)
+            .step_by(2)
+            .filter(|v| !v.starts_with('#'))
+        {
+            let b = value.as_bytes();
+            assert!(
+                !(1..b.len()).any(|i| b[i] == b'e' && b[i - 1].is_ascii_digit()),
+                "{value}"
+            );
+        }
+        assert!(!a.contains("NaN") && !a.contains("inf"));
+        assert!(!balanced("<svg><g></svg>"));
+    }
+}

@@ -1,0 +1,573 @@
+//! The checker's own distance fields, evaluated directly from the scene's definitions
+//! (`SCENE_FORMAT.md`, "Site kinds" and "Point metrics"). Nothing here is shared with
+//! the algorithms.
+
+use crate::error::Error;
+use crate::geom::Point;
+use crate::num::poly::Poly;
+use crate::scene::{Metric, Scene, SiteKind};
+use std::f64::consts::{FRAC_PI_2, TAU};
+
+/// One site's distance field, prepared for evaluation.
+#[derive(Clone, Debug)]
+pub(super) enum Field {
+    /// `|q − p|`
+    Euclid { p: Point },
+    /// `(x − px)^p + (y − py)^p`, `p` even
+    Lp { p: Point, exp: i32 },
+    /// `(q − p)ᵀ M (q − p) − w`
+    Aniso { p: Point, m: [[f64; 2]; 2], w: f64 },
+    /// `s |q − p|² − w` (power: `s = 1`, `w = weight²`; Möbius: `s = v`)
+    Scaled { p: Point, s: f64, w: f64 },
+    /// `|q − c| − r`
+    Circle { c: Point, r: f64 },
+    /// distance to the closed segment `[a, b]`
+    Segment { a: Point, b: Point },
+    /// distance to the arc of radius `r` about `c` from angle `start`, sweeping `sweep`
+    /// counter-clockwise (`sweep ≥ 2π`: the full circle)
+    Arc {
+        c: Point,
+        r: f64,
+        start: f64,
+        sweep: f64,
+    },
+    /// distance to the ellipse curve `c + R(θ) (a cos t, b sin t)` from outside, 0 inside
+    Ellipse { c: Point, a: f64, b: f64, rot: f64 },
+    /// an explicit polynomial field `f(x, y)`
+    Poly { f: Poly, h: f64 },
+    /// the smallest non-negative root `z` of `g(x, y, z)`, 0 if none
+    Implicit { g: Poly, h: f64 },
+}
+
+/// How far the field can drop near its anchor: `field(q) ≥ lower(|q − anchor|)`,
+/// non-decreasing in the distance, for the nearest-site search.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Bound {
+    /// `k · r^e − w` (clamped below by `floor`)
+    Pow { k: f64, e: i32, w: f64, floor: f64 },
+    /// no bound: evaluate always
+    None,
+}
+
+impl Bound {
+    pub(super) fn lower(self, r: f64) -> f64 {
+        match self {
+            Bound::Pow { k, e, w, floor } => (k * r.powi(e) - w).max(floor),
+            Bound::None => f64::NEG_INFINITY,
+        }
+    }
+}
+
+impl Field {
+    /// Builds the field of every site, or refuses a kind the checker cannot evaluate.
+    pub(super) fn from_scene(scene: &Scene) -> Result<Vec<Field>, Error> {
+        let h = 1e-6 * scene.domain.longest_side();
+        scene
+            .sites
+            .iter()
+            .enumerate()
+            .map(|(i, site)| {
+                Ok(match &site.kind {
+                    SiteKind::Point { at, metric } => match *metric {
+                        Metric::Euclidean => Field::Euclid { p: *at },
+                        Metric::Lp { p } => Field::Lp {
+                            p: *at,
+                            exp: p as i32,
+                        },
+                        Metric::Anisotropic { matrix, weight } => Field::Aniso {
+                            p: *at,
+                            m: matrix,
+                            w: weight,
+                        },
+                        Metric::Power { weight } => Field::Scaled {
+                            p: *at,
+                            s: 1.0,
+                            w: weight * weight,
+                        },
+                        Metric::Moebius { scale, weight } => Field::Scaled {
+                            p: *at,
+                            s: scale,
+                            w: weight,
+                        },
+                    },
+                    SiteKind::Circle { center, radius } => Field::Circle {
+                        c: *center,
+                        r: *radius,
+                    },
+                    SiteKind::Segment { from, to } => Field::Segment { a: *from, b: *to },
+                    SiteKind::Arc {
+                        center,
+                        radius,
+                        start_angle,
+                        end_angle,
+                    } => {
+                        let d = end_angle - start_angle;
+                        let sweep = if d >= TAU { TAU } else { d.rem_euclid(TAU) };
+                        Field::Arc {
+                            c: *center,
+                            r: *radius,
+                            start: *start_angle,
+                            sweep: if sweep == 0.0 && d != 0.0 { TAU } else { sweep },
+                        }
+                    }
+                    SiteKind::Ellipse {
+                        center,
+                        semi_axes,
+                        rotation,
+                    } => Field::Ellipse {
+                        c: *center,
+                        a: semi_axes[0],
+                        b: semi_axes[1],
+                        rot: *rotation,
+                    },
+                    SiteKind::Field { equation } => Field::Poly {
+                        f: equation.poly.clone(),
+                        h,
+                    },
+                    SiteKind::ImplicitField { equation } => Field::Implicit {
+                        g: equation.poly.clone(),
+                        h,
+                    },
+                    other => {
+                        return Err(Error::Unsupported {
+                            site: i,
+                            kind: other.name().to_string(),
+                            message: "the checker cannot evaluate this kind yet".into(),
+                        })
+                    }
+                })
+            })
+            .collect()
+    }
+
+    /// The anchor and lower bound used by the nearest-site search.
+    pub(super) fn bound(&self) -> (Point, Bound) {
+        let radial = |p: Point, rho: f64| {
+            let b = Bound::Pow {
+                k: 1.0,
+                e: 1,
+                w: rho,
+                floor: 0.0,
+            };
+            (p, b)
+        };
+        match *self {
+            Field::Euclid { p } => radial(p, 0.0),
+            // x^p + y^p ≥ 2 ((x² + y²)/2)^(p/2) = 2^(1 − p/2) r^p (power means)
+            Field::Lp { p, exp } => (
+                p,
+                Bound::Pow {
+                    k: 2f64.powf(1.0 - exp as f64 / 2.0),
+                    e: exp,
+                    w: 0.0,
+                    floor: 0.0,
+                },
+            ),
+            // (q − p)ᵀ M (q − p) ≥ λ_min r²
+            Field::Aniso { p, m, w } => {
+                let tr = 0.5 * (m[0][0] + m[1][1]);
+                let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+                let lmin = (tr - (tr * tr - det).max(0.0).sqrt()).max(0.0);
+                let b = Bound::Pow {
+                    k: lmin * (1.0 - 1e-12),
+                    e: 2,
+                    w,
+                    floor: -w,
+                };
+                (p, b)
+            }
+            Field::Scaled { p, s, w } => (
+                p,
+                Bound::Pow {
+                    k: s,
+                    e: 2,
+                    w,
+                    floor: -w,
+                },
+            ),
+            Field::Circle { c, r } => (
+                c,
+                Bound::Pow {
+                    k: 1.0,
+                    e: 1,
+                    w: r,
+                    floor: -r,
+                },
+            ),
+            Field::Segment { a, b } => radial(a.lerp(b, 0.5), 0.5 * a.dist(b)),
+            Field::Arc { c, r, .. } => radial(c, r),
+            Field::Ellipse { c, a, b, .. } => radial(c, a.max(b)),
+            Field::Poly { .. } | Field::Implicit { .. } => (Point::default(), Bound::None),
+        }
+    }
+
+    /// The field at `q`.
+    pub(super) fn value(&self, q: Point) -> f64 {
+        match *self {
+            Field::Euclid { p } => q.dist(p),
+            Field::Lp { p, exp } => (q.x - p.x).powi(exp) + (q.y - p.y).powi(exp),
+            Field::Aniso { p, m, w } => {
+                let d = q - p;
+                m[0][0] * d.x * d.x + (m[0][1] + m[1][0]) * d.x * d.y + m[1][1] * d.y * d.y - w
+            }
+            Field::Scaled { p, s, w } => {
+                let d = q - p;
+                s * d.dot(d) - w
+            }
+            Field::Circle { c, r } => q.dist(c) - r,
+            Field::Segment { a, b } => q.dist(segment_foot(a, b, q)),
+            Field::Arc { .. } => q.dist(self.foot(q).unwrap_or(q)),
+            Field::Ellipse { .. } if self.inside(q) => 0.0,
+            Field::Ellipse { .. } => q.dist(self.foot(q).unwrap_or(q)),
+            Field::Poly { ref f, .. } => f.eval(q.x, q.y, 0.0),
+            Field::Implicit { ref g, .. } => smallest_nonneg_root(&z_coeffs(g, q)),
+        }
+    }
+
+    /// The field and its gradient at `q` (analytic where simple, else central
+    /// differences).
+    pub(super) fn eval(&self, q: Point) -> (f64, Point) {
+        let unit = |v: Point| {
+            let n = v.norm();
+            if n > 0.0 {
+                v * (1.0 / n)
+            } else {
+                Point::default()
+            }
+        };
+        match *self {
+            Field::Euclid { p } => (q.dist(p), unit(q - p)),
+            Field::Lp { p, exp } => {
+                let d = q - p;
+                let g = Point::new(
+                    exp as f64 * d.x.powi(exp - 1),
+                    exp as f64 * d.y.powi(exp - 1),
+                );
+                (self.value(q), g)
+            }
+            Field::Aniso { p, m, .. } => {
+                let d = q - p;
+                let g = Point::new(
+                    2.0 * m[0][0] * d.x + (m[0][1] + m[1][0]) * d.y,
+                    (m[0][1] + m[1][0]) * d.x + 2.0 * m[1][1] * d.y,
+                );
+                (self.value(q), g)
+            }
+            Field::Scaled { p, s, .. } => (self.value(q), (q - p) * (2.0 * s)),
+            Field::Circle { c, .. } => (self.value(q), unit(q - c)),
+            Field::Segment { .. } | Field::Arc { .. } | Field::Ellipse { .. } => {
+                match self.foot(q) {
+                    Some(f) if !self.inside(q) => (q.dist(f), unit(q - f)),
+                    _ => (0.0, Point::default()),
+                }
+            }
+            Field::Poly { h, .. } | Field::Implicit { h, .. } => {
+                let dx = Point::new(h, 0.0);
+                let dy = Point::new(0.0, h);
+                let g = Point::new(
+                    (self.value(q + dx) - self.value(q - dx)) / (2.0 * h),
+                    (self.value(q + dy) - self.value(q - dy)) / (2.0 * h),
+                );
+                (self.value(q), g)
+            }
+        }
+    }
+
+    /// The nearest point of a geometric site (points: the point itself), if any.
+    pub(super) fn foot(&self, q: Point) -> Option<Point> {
+        match *self {
+            Field::Euclid { p }
+            | Field::Lp { p, .. }
+            | Field::Aniso { p, .. }
+            | Field::Scaled { p, .. } => Some(p),
+            Field::Circle { c, r } => {
+                let d = q - c;
+                let n = d.norm();
+                Some(if n > 0.0 { c + d * (r / n) } else { c })
+            }
+            Field::Segment { a, b } => Some(segment_foot(a, b, q)),
+            Field::Arc { c, r, start, sweep } => {
+                let d = q - c;
+                let t = (d.y.atan2(d.x) - start).rem_euclid(TAU);
+                let n = d.norm();
+                if (t <= sweep || sweep >= TAU) && n > 0.0 {
+                    return Some(c + d * (r / n));
+                }
+                let at = |a: f64| c + Point::new(a.cos(), a.sin()) * r;
+                let (p0, p1) = (at(start), at(start + sweep));
+                Some(if q.dist(p0) <= q.dist(p1) { p0 } else { p1 })
+            }
+            Field::Ellipse { c, a, b, rot } => {
+                let (s, co) = rot.sin_cos();
+                let d = q - c;
+                let local = Point::new(co * d.x + s * d.y, -s * d.x + co * d.y);
+                let f = ellipse_foot(a, b, local);
+                Some(c + Point::new(co * f.x - s * f.y, s * f.x + co * f.y))
+            }
+            Field::Poly { .. } | Field::Implicit { .. } => None,
+        }
+    }
+
+    /// Whether `q` lies strictly inside a closed site (an ellipse).
+    pub(super) fn inside(&self, q: Point) -> bool {
+        self.inside_depth(q) > 0.0
+    }
+
+    /// A lower bound on the distance from `q` to the boundary of the closed site that
+    /// contains it (0 outside). For an ellipse with `s² = (x/a)² + (y/b)² < 1` this is
+    /// `(1 − s) min(a, b)`: by convexity `E ⊇ sE + (1 − s) B(0, min(a, b))`.
+    pub(super) fn inside_depth(&self, q: Point) -> f64 {
+        match *self {
+            Field::Ellipse { c, a, b, rot } => {
+                let (s, co) = rot.sin_cos();
+                let d = q - c;
+                let (x, y) = (co * d.x + s * d.y, -s * d.x + co * d.y);
+                let r = ((x / a).powi(2) + (y / b).powi(2)).sqrt();
+                ((1.0 - r) * a.min(b)).max(0.0)
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// A Euclidean distance from `q` to the site itself, in length units (for point
+    /// fields: to the point; for field sites: `|f| / |∇f|`).
+    pub(super) fn distance_to_site(&self, q: Point) -> f64 {
+        match *self {
+            Field::Circle { .. } | Field::Poly { .. } | Field::Implicit { .. } => {
+                let (v, g) = self.eval(q);
+                if matches!(self, Field::Circle { .. }) {
+                    v.abs()
+                } else {
+                    v.abs() / g.norm().max(1e-300)
+                }
+            }
+            _ => self.foot(q).map_or(f64::INFINITY, |f| q.dist(f)),
+        }
+    }
+}
+
+/// The point of the closed segment `[a, b]` nearest to `q`.
+fn segment_foot(a: Point, b: Point, q: Point) -> Point {
+    let ab = b - a;
+    let l2 = ab.dot(ab);
+    let t = if l2 > 0.0 {
+        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    a.lerp(b, t)
+}
+
+/// The nearest point of the axis-aligned ellipse `(a cos t, b sin t)` to `q`. By
+/// symmetry the first quadrant suffices; there the foot's angle `t ∈ [0, π/2]` is the
+/// root of `φ(t) = (a² − b²) sin t cos t − a x sin t + b y cos t`, which is unique for
+/// points outside the evolute (`φ(0) ≥ 0 ≥ φ(π/2)`). Newton steps, safeguarded by
+/// bisection of the bracket; from inside points it returns one stationary foot.
+fn ellipse_foot(a: f64, b: f64, q: Point) -> Point {
+    let (x, y) = (q.x.abs(), q.y.abs());
+    let phi = |t: f64| {
+        let (s, c) = t.sin_cos();
+        (a * a - b * b) * s * c - a * x * s + b * y * c
+    };
+    let dphi = |t: f64| {
+        let (s, c) = t.sin_cos();
+        (a * a - b * b) * (c * c - s * s) - a * x * c - b * y * s
+    };
+    let (mut lo, mut hi) = (0.0, FRAC_PI_2);
+    let mut t = (b * y).atan2(a * x).clamp(lo, hi);
+    for _ in 0..100 {
+        let f = phi(t);
+        if f == 0.0 {
+            break;
+        }
+        if f > 0.0 {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let d = dphi(t);
+        let nt = t - f / d;
+        t = if d != 0.0 && nt > lo && nt < hi {
+            nt
+        } else {
+            0.5 * (lo + hi)
+        };
+        if hi - lo <= 1e-15 || (f / d).abs() <= 1e-16 {
+            break;
+        }
+    }
+    let (s, c) = t.sin_cos();
+    Point::new((a * c).copysign(q.x), (b * s).copysign(q.y))
+}
+
+/// The coefficients `c_k` of `g(x, y, z) = Σ c_k z^k` at `q = (x, y)`.
+fn z_coeffs(g: &Poly, q: Point) -> Vec<f64> {
+    let deg = g.terms.iter().map(|t| t.0[2]).max().unwrap_or(0) as usize;
+    let mut c = vec![0.0; deg + 1];
+    for &([i, j, k], coef) in &g.terms {
+        c[k as usize] += coef * q.x.powi(i as i32) * q.y.powi(j as i32);
+    }
+    c
+}
+
+/// `Σ c_k t^k` by Horner's rule.
+fn horner(c: &[f64], t: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &ck| acc * t + ck)
+}
+
+/// The smallest non-negative real root of `Σ c_k z^k`, or 0 if there is none (the point
+/// is inside the site). Degrees ≤ 2 in closed form; higher degrees by isolating the
+/// roots between the derivative's roots on `[0, B]`, `B = 1 + max |c_k / c_n|`
+/// (Cauchy), each monotone piece solved by safeguarded Newton.
+fn smallest_nonneg_root(c: &[f64]) -> f64 {
+    let scale = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut n = c.len();
+    while n > 0 && c[n - 1].abs() <= 1e-14 * scale {
+        n -= 1;
+    }
+    let c = &c[..n];
+    let root = match n {
+        0 | 1 => None,
+        2 => Some(-c[0] / c[1]).filter(|z| *z >= 0.0),
+        3 => {
+            let (a, b, cc) = (c[2], c[1], c[0]);
+            let disc = b * b - 4.0 * a * cc;
+            if disc < 0.0 {
+                None
+            } else {
+                // numerically stable pair of roots
+                let qq = -0.5 * (b + disc.sqrt().copysign(b));
+                let r1 = qq / a;
+                let r2 = if qq != 0.0 { cc / qq } else { r1 };
+                [r1.min(r2), r1.max(r2)].into_iter().find(|z| *z >= 0.0)
+            }
+        }
+        _ => {
+            let bound = 1.0
+                + c[..n - 1]
+                    .iter()
+                    .fold(0.0f64, |m, v| m.max((v / c[n - 1]).abs()));
+            real_roots(c, 0.0, bound).into_iter().next()
+        }
+    };
+    root.unwrap_or(0.0)
+}
+
+/// The real roots of `Σ c_k t^k` in `[lo, hi]`, ascending: between consecutive roots of
+/// the derivative the polynomial is monotone, so each piece holds at most one root; a
+/// critical point where the polynomial vanishes (to rounding) is a multiple root.
+fn real_roots(c: &[f64], lo: f64, hi: f64) -> Vec<f64> {
+    if c.len() <= 1 {
+        return Vec::new();
+    }
+    if c.len() == 2 {
+        let z = -c[0] / c[1];
+        return if (lo..=hi).contains(&z) {
+            vec![z]
+        } else {
+            Vec::new()
+        };
+    }
+    let d: Vec<f64> = c
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(k, ck)| k as f64 * ck)
+        .collect();
+    let mut knots = vec![lo];
+    knots.extend(real_roots(&d, lo, hi));
+    knots.push(hi);
+    let noise = |t: f64| {
+        1e-12
+            * c.iter()
+                .rev()
+                .fold(0.0, |acc: f64, &ck| acc * t.abs() + ck.abs())
+    };
+    let mut roots: Vec<f64> = Vec::new();
+    for w in knots.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let (fa, fb) = (horner(c, a), horner(c, b));
+        if fa.abs() <= noise(a) {
+            if roots.last().is_none_or(|r| *r < a) {
+                roots.push(a);
+            }
+            continue;
+        }
+        if fa * fb > 0.0 {
+            continue;
+        }
+        let (mut l, mut h) = if fa < 0.0 { (a, b) } else { (b, a) };
+        let mut t = 0.5 * (a + b);
+        for _ in 0..200 {
+            let f = horner(c, t);
+            if f == 0.0 {
+                break;
+            }
+            if f < 0.0 {
+                l = t;
+            } else {
+                h = t;
+            }
+            let df = horner(&d, t);
+            let nt = t - f / df;
+            let (mn, mx) = (l.min(h), l.max(h));
+            t = if df != 0.0 && nt > mn && nt < mx {
+                nt
+            } else {
+                0.5 * (l + h)
+            };
+            if (mx - mn) <= 1e-15 * mx.abs().max(1e-300) || (f / df).abs() <= 1e-16 * t.abs() {
+                break;
+            }
+        }
+        roots.push(t);
+    }
+    if horner(c, hi).abs() <= noise(hi) && roots.last().is_none_or(|r| *r < hi) {
+        roots.push(hi);
+    }
+    roots
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn roots_of_cubic_and_quadratic() {
+        // (z − 1)(z − 2)(z + 3) = z³ − 7z + 6
+        assert!((smallest_nonneg_root(&[6.0, -7.0, 0.0, 1.0]) - 1.0).abs() < 1e-12);
+        // (z − 0.5)² double root
+        assert!((smallest_nonneg_root(&[0.25, -1.0, 1.0]) - 0.5).abs() < 1e-7);
+        // z² + 1: none
+        assert_eq!(smallest_nonneg_root(&[1.0, 0.0, 1.0]), 0.0);
+        // (z − 0.3)²(z − 2)(z + 1): quartic with a double root
+        let c = [-0.18, 1.11, -1.31, -1.6, 1.0];
+        assert!(
+            (smallest_nonneg_root(&c) - 0.3).abs() < 1e-6,
+            "{}",
+            smallest_nonneg_root(&c)
+        );
+    }
+
+    #[test]
+    fn ellipse_and_arc_distances() {
+        let e = Field::Ellipse {
+            c: Point::new(1.0, 0.0),
+            a: 2.0,
+            b: 1.0,
+            rot: FRAC_PI_2,
+        };
+        // rotated by 90°: the major axis is vertical
+        assert!((e.value(Point::new(1.0, 3.0)) - 1.0).abs() < 1e-12);
+        assert!((e.value(Point::new(3.0, 0.0)) - 1.0).abs() < 1e-12);
+        assert_eq!(e.value(Point::new(1.2, 0.3)), 0.0);
+        let arc = Field::Arc {
+            c: Point::default(),
+            r: 1.0,
+            start: 0.0,
+            sweep: FRAC_PI_2,
+        };
+        assert!((arc.value(Point::new(2.0, 2.0)) - (8f64.sqrt() - 1.0)).abs() < 1e-12);
+        assert!((arc.value(Point::new(0.0, -1.0)) - 2f64.sqrt()).abs() < 1e-12);
+    }
+}

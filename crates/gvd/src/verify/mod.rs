@@ -1,0 +1,889 @@
+//! `gvd verify`: an independent brute-force checker of a diagram against its scene.
+//!
+//! It evaluates the sites' distance fields itself, straight from the [`Scene`] (see
+//! `field.rs`), and never calls an algorithm that computes diagrams. The checks follow
+//! the shared Python checker (`tools/README.md`), with tolerance `tol = slack · ε`:
+//!
+//! * **a. soundness** — every edge polyline is sampled at spacing ≤ ε/2 (its own points
+//!   included); each sample moves onto the bisector of its generators `a`, `b` by up to 4
+//!   Newton steps on `d_a − d_b` (each at most 4ε). `e_tie` = distance moved +
+//!   `|d_a − d_b| / |∇(d_a − d_b)|`; if another site `k` is nearer there by an excess,
+//!   `e_other = excess / |∇(d_min − d_k)|`. The sample error is `hypot(e_tie, e_other)`,
+//!   at least its distance outside the domain or inside a closed site; good iff ≤ tol.
+//! * **b. vertices** — Gauss–Newton from the vertex to the nearby point where its
+//!   generators tie; error = distance to it + leftover spread / (2 max |∇d|), combined
+//!   with `e_other`; every vertex must have error ≤ tol.
+//! * **c. completeness** — the centres of an N × N grid are labelled with their nearest
+//!   site; every crossing between differently labelled neighbours (bisection, split where
+//!   a third site is nearer) needs an output edge with the same unordered pair within
+//!   `R = 2·tol + h`, or a vertex within `R` listing both.
+//! * **d. structure** — valid labels and `from`/`to` references, edge ends within tol of
+//!   the vertex they name, which lists the edge's generators; null ends on the domain
+//!   boundary unless the edge is a closed loop.
+
+mod field;
+mod nearest;
+
+use crate::complex::{Generator, VoronoiComplex};
+use crate::error::Error;
+use crate::geom::{Aabb, Point};
+use crate::scene::{Mode, Scene};
+use field::Field;
+use nearest::Nearest;
+use std::collections::BTreeMap;
+
+/// How strict the checker is.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VerifyOptions {
+    /// The completeness grid is `grid × grid` nodes.
+    pub grid: usize,
+    /// Every distance test uses `tol = slack · epsilon`.
+    pub slack: f64,
+    /// The fraction of good edge samples needed to pass.
+    pub min_sound: f64,
+    /// The fraction of covered bisector crossings needed to pass.
+    pub min_complete: f64,
+}
+
+impl Default for VerifyOptions {
+    fn default() -> Self {
+        VerifyOptions {
+            grid: 512,
+            slack: 1.0,
+            min_sound: 1.0,
+            min_complete: 1.0,
+        }
+    }
+}
+
+/// What the checker found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// The fraction of edge samples within tolerance of their bisector.
+    pub sound: f64,
+    /// The fraction of grid bisector crossings covered by an edge or vertex.
+    pub complete: f64,
+    /// `(good, total)` vertices.
+    pub vertices_ok: (usize, usize),
+    /// The largest edge sample error, in length units.
+    pub worst_edge_error: f64,
+    /// The worst offenders of each check, each naming the edge or vertex, its
+    /// generators and a location.
+    pub problems: Vec<String>,
+    /// Findings that do not fail the diagram (unreferenced vertices, null ends on a site).
+    pub warnings: Vec<String>,
+    /// Whether all four checks passed.
+    pub passed: bool,
+}
+
+impl Report {
+    /// `sound=0.9993 complete=0.9981 vertices_ok=123/123 worst_edge_error=0.0012 PASS`,
+    /// as the Python checker prints it.
+    pub fn summary_line(&self) -> String {
+        format!(
+            "sound={:.4} complete={:.4} vertices_ok={}/{} worst_edge_error={} {}",
+            self.sound,
+            self.complete,
+            self.vertices_ok.0,
+            self.vertices_ok.1,
+            fmt_g3(self.worst_edge_error),
+            if self.passed { "PASS" } else { "FAIL" }
+        )
+    }
+}
+
+/// How many offenders each check lists.
+const MAX_LIST: usize = 5;
+
+/// Checks `diagram` against `scene`. Refuses scenes the checker cannot evaluate: modes
+/// other than `voronoi`, and site kinds without a distance field here yet.
+pub fn verify(
+    scene: &Scene,
+    diagram: &VoronoiComplex,
+    opts: &VerifyOptions,
+) -> Result<Report, Error> {
+    if scene.mode != Mode::Voronoi {
+        return Err(Error::scene(
+            "mode",
+            "verify supports only mode 'voronoi' for now",
+        ));
+    }
+    let fields = Field::from_scene(scene)?;
+    let ck = Checker::new(scene, &fields, diagram, opts);
+    Ok(ck.run())
+}
+
+/// Maps `f` over `0..n`, in parallel with the `parallel` feature.
+fn par_map<T: Send, F: Fn(usize) -> T + Sync + Send>(n: usize, f: F) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..n).into_par_iter().map(f).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        (0..n).map(f).collect()
+    }
+}
+
+/// `x` with 3 significant digits, like Python's `{:.3g}`.
+fn fmt_g3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x.is_nan() {
+            "nan".into()
+        } else if x.is_infinite() {
+            "inf".into()
+        } else {
+            "0".into()
+        };
+    }
+    let e = x.abs().log10().floor() as i32;
+    let trim = |s: String| {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    };
+    if !(-4..3).contains(&e) {
+        let m = x / 10f64.powi(e);
+        // rounding may carry the mantissa to 10
+        let (m, e) = if (m.abs() * 100.0).round() >= 1000.0 {
+            (m / 10.0, e + 1)
+        } else {
+            (m, e)
+        };
+        format!(
+            "{}e{}{:02}",
+            trim(format!("{m:.2}")),
+            if e < 0 { '-' } else { '+' },
+            e.abs()
+        )
+    } else {
+        trim(format!("{:.*}", (2 - e).max(0) as usize, x))
+    }
+}
+
+/// A point as `(x, y)` with 6 significant digits.
+fn at(p: Point) -> String {
+    format!("({:.6}, {:.6})", p.x, p.y)
+}
+
+/// Objects bucketed by a point in a uniform grid of cells (indices clamped, so objects
+/// outside the grid land in its border cells).
+struct Buckets {
+    origin: Point,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    start: Vec<usize>,
+    ids: Vec<usize>,
+}
+
+impl Buckets {
+    fn new(points: &[Point], area: Aabb, cell: f64) -> Self {
+        let nx = ((area.width() / cell).ceil() as usize).clamp(1, 4096);
+        let ny = ((area.height() / cell).ceil() as usize).clamp(1, 4096);
+        let mut b = Buckets {
+            origin: area.min,
+            cell,
+            nx,
+            ny,
+            start: vec![0; nx * ny + 1],
+            ids: vec![0; points.len()],
+        };
+        let keys: Vec<usize> = points.iter().map(|&p| b.key(p)).collect();
+        for &k in &keys {
+            b.start[k + 1] += 1;
+        }
+        for k in 0..nx * ny {
+            b.start[k + 1] += b.start[k];
+        }
+        let mut fill = b.start.clone();
+        for (i, &k) in keys.iter().enumerate() {
+            b.ids[fill[k]] = i;
+            fill[k] += 1;
+        }
+        b
+    }
+
+    fn index(&self, p: Point) -> (usize, usize) {
+        let f = |v: f64, n: usize| (v / self.cell).floor().clamp(0.0, (n - 1) as f64) as usize;
+        (
+            f(p.x - self.origin.x, self.nx),
+            f(p.y - self.origin.y, self.ny),
+        )
+    }
+
+    fn key(&self, p: Point) -> usize {
+        let (i, j) = self.index(p);
+        j * self.nx + i
+    }
+
+    /// The objects in the cells within `reach` cells of `p`'s cell.
+    fn around(&self, p: Point, reach: usize) -> impl Iterator<Item = usize> + '_ {
+        let (i, j) = self.index(p);
+        let (i0, i1) = (i.saturating_sub(reach), (i + reach).min(self.nx - 1));
+        let (j0, j1) = (j.saturating_sub(reach), (j + reach).min(self.ny - 1));
+        (j0..=j1).flat_map(move |jj| {
+            let row = jj * self.nx;
+            self.ids[self.start[row + i0]..self.start[row + i1 + 1]]
+                .iter()
+                .copied()
+        })
+    }
+}
+
+/// The distance from `q` to the segment `[a, b]`.
+fn seg_dist(q: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let l2 = ab.dot(ab);
+    let t = if l2 > 0.0 {
+        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    q.dist(a.lerp(b, t))
+}
+
+fn finite(p: Point) -> bool {
+    p.x.is_finite() && p.y.is_finite()
+}
+
+/// An edge that passed the structural parse.
+struct GoodEdge {
+    index: usize,
+    a: usize,
+    b: usize,
+}
+
+struct Checker<'a> {
+    scene: &'a Scene,
+    fields: &'a [Field],
+    near: Nearest<'a>,
+    diagram: &'a VoronoiComplex,
+    opts: &'a VerifyOptions,
+    tol: f64,
+    scale: f64,
+    /// valid edges with their generators
+    edges: Vec<GoodEdge>,
+    /// each vertex's generators (deduplicated), `None` if invalid
+    vgens: Vec<Option<Vec<usize>>>,
+    errors: Vec<String>,
+    warnings: Vec<String>,
+}
+
+impl<'a> Checker<'a> {
+    fn new(
+        scene: &'a Scene,
+        fields: &'a [Field],
+        diagram: &'a VoronoiComplex,
+        opts: &'a VerifyOptions,
+    ) -> Self {
+        let mut ck = Checker {
+            scene,
+            fields,
+            near: Nearest::new(fields, scene.domain),
+            diagram,
+            opts,
+            tol: opts.slack * scene.epsilon,
+            scale: scene.domain.longest_side(),
+            edges: Vec::new(),
+            vgens: Vec::new(),
+            errors: Vec::new(),
+            warnings: Vec::new(),
+        };
+        ck.parse();
+        ck
+    }
+
+    /// A generator's site index, if the label is valid in voronoi mode.
+    fn label(&self, g: &Generator) -> Result<usize, String> {
+        match *g {
+            Generator::Site(i) if i < self.fields.len() => Ok(i),
+            Generator::Site(i) => Err(format!(
+                "site {i} does not exist (the scene has {} sites)",
+                self.fields.len()
+            )),
+            Generator::Feature { site, .. } => Err(format!(
+                "feature generators of site {site} are not valid in voronoi mode"
+            )),
+        }
+    }
+
+    /// The structural parse: which edges and vertices can be checked at all.
+    fn parse(&mut self) {
+        let d = self.diagram;
+        for (k, v) in d.vertices.iter().enumerate() {
+            let gens: Result<Vec<usize>, String> = if !finite(v.at) {
+                Err("'at' is not finite".into())
+            } else if v.sites.is_empty() {
+                Err("'sites' is empty".into())
+            } else {
+                v.sites.iter().map(|g| self.label(g)).collect()
+            };
+            match gens {
+                Ok(mut g) => {
+                    g.sort_unstable();
+                    g.dedup();
+                    self.vgens.push(Some(g));
+                }
+                Err(m) => {
+                    self.errors.push(format!("vertex {k}: {m}"));
+                    self.vgens.push(None);
+                }
+            }
+        }
+        for (k, e) in d.edges.iter().enumerate() {
+            let parsed = if e.points.len() < 2 || !e.points.iter().all(|&p| finite(p)) {
+                Err("'points' must be at least two finite points".to_string())
+            } else {
+                match (self.label(&e.sites[0]), self.label(&e.sites[1])) {
+                    (Ok(a), Ok(b)) if a == b => Err(format!(
+                        "both generators are site {a} (an edge separates two different sites)"
+                    )),
+                    (Ok(a), Ok(b)) => Ok((a, b)),
+                    (Err(m), _) | (_, Err(m)) => Err(m),
+                }
+            };
+            match parsed {
+                Ok((a, b)) => self.edges.push(GoodEdge { index: k, a, b }),
+                Err(m) => self.errors.push(format!("edge {k}: {m}")),
+            }
+        }
+    }
+
+    fn run(mut self) -> Report {
+        let mut problems = Vec::new();
+        let (sound, worst_edge_error, sound_ok) = self.soundness(&mut problems);
+        let (vok, vertices_ok) = self.vertices(&mut problems);
+        let complete = self.completeness(&mut problems);
+        self.structure();
+        let structure_ok = self.errors.is_empty();
+        let n = self.errors.len();
+        problems.extend(
+            self.errors
+                .iter()
+                .take(MAX_LIST)
+                .map(|m| format!("structure: {m}")),
+        );
+        if n > MAX_LIST {
+            problems.push(format!("structure: ... and {} more errors", n - MAX_LIST));
+        }
+        Report {
+            sound,
+            complete,
+            vertices_ok: vok,
+            worst_edge_error,
+            problems,
+            warnings: self.warnings,
+            passed: sound_ok && vertices_ok && complete >= self.opts.min_complete && structure_ok,
+        }
+    }
+
+    fn eval(&self, site: usize, q: Point) -> (f64, Point) {
+        self.fields[site].eval(q)
+    }
+
+    /// How far another site intrudes at `q` beyond the nearer of `gens`, whose value
+    /// there is `dmin` with gradient `gmin` (first order, in length units), and the
+    /// intruder; a point inside a closed site counts its depth.
+    fn intrusion(&self, q: Point, dmin: f64, gmin: Point, gens: &[usize]) -> (f64, usize) {
+        match self.near.at(q) {
+            None => {
+                let depth = self
+                    .fields
+                    .iter()
+                    .map(|f| f.inside_depth(q))
+                    .fold(0.0, f64::max);
+                (depth, usize::MAX)
+            }
+            Some(hit) if !gens.contains(&hit.site) && dmin > hit.value => {
+                let (_, gk) = self.eval(hit.site, q);
+                ((dmin - hit.value) / (gmin - gk).norm().max(1e-12), hit.site)
+            }
+            Some(hit) => (0.0, hit.site),
+        }
+    }
+
+    /// The error of edge sample `q0` of the bisector of `a` and `b`, and why.
+    fn sample_error(&self, q0: Point, a: usize, b: usize) -> (f64, &'static str) {
+        let cap = 4.0 * self.scene.epsilon;
+        let mut q = q0;
+        let (mut va, mut ga) = self.eval(a, q);
+        let (mut vb, mut gb) = self.eval(b, q);
+        let mut far = None;
+        for _ in 0..4 {
+            let (d, g) = (va - vb, ga - gb);
+            let gn = g.norm();
+            if !d.is_finite() || gn <= 1e-12 {
+                break;
+            }
+            let step = g * (-d / (gn * gn));
+            let sl = step.norm();
+            if sl > cap {
+                far = Some((d.abs() / gn).max(cap));
+                break;
+            }
+            if sl <= 1e-13 * self.scale {
+                break;
+            }
+            q = q + step;
+            (va, ga) = self.eval(a, q);
+            (vb, gb) = self.eval(b, q);
+        }
+        let (d, gn) = (va - vb, (ga - gb).norm());
+        let resid = if d != 0.0 { d.abs() / gn } else { 0.0 };
+        let e_tie = far.unwrap_or(q.dist(q0) + resid);
+        let e_tie = if e_tie.is_finite() {
+            e_tie
+        } else {
+            f64::INFINITY
+        };
+        let (dmin, gmin) = if va <= vb { (va, ga) } else { (vb, gb) };
+        let (e_other, _) = self.intrusion(q, dmin, gmin, &[a, b]);
+        let mut e = e_tie.hypot(e_other);
+        let mut why = if e_tie >= e_other {
+            "not on the bisector of its generators"
+        } else {
+            "another site is nearer"
+        };
+        let out = self.scene.domain.outside_distance(q0);
+        if out > e {
+            (e, why) = (out, "outside the domain");
+        }
+        let inside = self
+            .fields
+            .iter()
+            .map(|f| f.inside_depth(q0))
+            .fold(0.0, f64::max);
+        if inside > e {
+            (e, why) = (inside, "inside a closed site");
+        }
+        (e, why)
+    }
+
+    /// Check a: returns (fraction good, worst error, pass).
+    fn soundness(&self, problems: &mut Vec<String>) -> (f64, f64, bool) {
+        let spacing = self.scene.epsilon / 2.0;
+        let mut samples: Vec<(Point, usize)> = Vec::new();
+        for (g, ge) in self.edges.iter().enumerate() {
+            let pts = &self.diagram.edges[ge.index].points;
+            for w in pts.windows(2) {
+                let n = ((w[1].dist(w[0]) / spacing).ceil() as usize).max(1);
+                samples.extend((0..n).map(|j| (w[0].lerp(w[1], j as f64 / n as f64), g)));
+            }
+            samples.push((pts[pts.len() - 1], g));
+        }
+        let errs = par_map(samples.len(), |i| {
+            let (q, g) = samples[i];
+            self.sample_error(q, self.edges[g].a, self.edges[g].b)
+        });
+        let good = errs.iter().filter(|e| e.0 <= self.tol).count();
+        let worst = errs.iter().fold(0.0, |m: f64, e| m.max(e.0));
+        // the worst sample of each bad edge
+        let mut per_edge: BTreeMap<usize, (f64, usize, &str, usize)> = BTreeMap::new();
+        for (i, &(e, why)) in errs.iter().enumerate() {
+            if e > self.tol {
+                let ent = per_edge.entry(samples[i].1).or_insert((e, i, why, 0));
+                ent.3 += 1;
+                if e > ent.0 {
+                    (ent.0, ent.1, ent.2) = (e, i, why);
+                }
+            }
+        }
+        let mut bad: Vec<_> = per_edge.into_iter().collect();
+        bad.sort_by(|x, y| y.1 .0.total_cmp(&x.1 .0));
+        for &(g, (e, i, why, count)) in bad.iter().take(MAX_LIST) {
+            let ge = &self.edges[g];
+            problems.push(format!(
+                "soundness: edge {} (sites {}, {}): {count} bad samples, worst {} ({} eps) at {}: {why}",
+                ge.index,
+                ge.a,
+                ge.b,
+                fmt_g3(e),
+                fmt_g3(e / self.scene.epsilon),
+                at(samples[i].0)
+            ));
+        }
+        if bad.len() > MAX_LIST {
+            problems.push(format!(
+                "soundness: ... and {} more bad edges",
+                bad.len() - MAX_LIST
+            ));
+        }
+        let fraction = if samples.is_empty() {
+            1.0
+        } else {
+            good as f64 / samples.len() as f64
+        };
+        let invalid = self.diagram.edges.len() - self.edges.len();
+        (
+            fraction,
+            worst,
+            fraction >= self.opts.min_sound && invalid == 0,
+        )
+    }
+
+    /// One Gauss–Newton step towards `d_i(v + s) = t` for all generators `i` (unknowns
+    /// `s`, `t`): solves `(JᵀJ + δI) x = −Jᵀr` with rows `J_i = (∇d_i, −1)` and
+    /// `r_i = d_i − mean d`. Returns the step and the values and gradients at `v`.
+    fn gauss_newton_step(&self, v: Point, gens: &[usize]) -> (Point, Vec<(f64, Point)>) {
+        let ev: Vec<(f64, Point)> = gens.iter().map(|&g| self.eval(g, v)).collect();
+        let mean = ev.iter().map(|e| e.0).sum::<f64>() / ev.len() as f64;
+        let mut m = [[0.0f64; 3]; 3];
+        let mut rhs = [0.0f64; 3];
+        for &(val, g) in &ev {
+            let j = [g.x, g.y, -1.0];
+            for r in 0..3 {
+                for c in 0..3 {
+                    m[r][c] += j[r] * j[c];
+                }
+                rhs[r] -= j[r] * (val - mean);
+            }
+        }
+        let reg = 1e-12 * (m[0][0] + m[1][1] + m[2][2]);
+        for (r, row) in m.iter_mut().enumerate() {
+            row[r] += reg;
+        }
+        let x = solve3(m, rhs).unwrap_or([0.0; 3]);
+        let step = Point::new(x[0], x[1]);
+        (if finite(step) { step } else { Point::default() }, ev)
+    }
+
+    /// The error of vertex `v` with generators `gens`, and why.
+    fn vertex_error(&self, v: Point, gens: &[usize]) -> (f64, String) {
+        let cap = 4.0 * self.scene.epsilon;
+        let mut pos = v;
+        for _ in 0..6 {
+            let (s, _) = self.gauss_newton_step(pos, gens);
+            pos = pos + s * (cap / s.norm().max(1e-300)).min(1.0);
+        }
+        let (s, _) = self.gauss_newton_step(pos, gens);
+        pos = pos + s;
+        let (_, ev) = self.gauss_newton_step(pos, gens);
+        let vmax = ev.iter().map(|e| e.0).fold(f64::NEG_INFINITY, f64::max);
+        let (vmin, gmin) = ev
+            .iter()
+            .copied()
+            .fold((f64::INFINITY, Point::default()), |m, e| {
+                if e.0 < m.0 {
+                    e
+                } else {
+                    m
+                }
+            });
+        let gmax = ev.iter().map(|e| e.1.norm()).fold(0.0, f64::max);
+        let spread = if (vmax - vmin).is_finite() {
+            vmax - vmin
+        } else {
+            0.0
+        };
+        let e_tie = pos.dist(v) + spread / (2.0 * gmax).max(1e-12);
+        let (e_other, who) = self.intrusion(pos, vmin, gmin, gens);
+        let e = e_tie.hypot(e_other);
+        let out = self.scene.domain.outside_distance(v);
+        let why = if out >= e {
+            "outside the domain".to_string()
+        } else if e_tie >= e_other {
+            "its generators are not tied".to_string()
+        } else if who == usize::MAX {
+            "inside a closed site".to_string()
+        } else {
+            format!("site {who} is nearer")
+        };
+        (e.max(out), why)
+    }
+
+    /// Check b: returns ((good, total), pass).
+    fn vertices(&self, problems: &mut Vec<String>) -> ((usize, usize), bool) {
+        let vs = &self.diagram.vertices;
+        let errs = par_map(vs.len(), |k| {
+            self.vgens[k]
+                .as_ref()
+                .map(|g| self.vertex_error(vs[k].at, g))
+        });
+        let mut bad: Vec<(usize, f64, &str)> = Vec::new();
+        let mut ok = 0;
+        for (k, e) in errs.iter().enumerate() {
+            match e {
+                Some((e, _)) if *e <= self.tol => ok += 1,
+                Some((e, why)) => bad.push((k, *e, why)),
+                None => {}
+            }
+        }
+        bad.sort_by(|x, y| y.1.total_cmp(&x.1));
+        for &(k, e, why) in bad.iter().take(MAX_LIST) {
+            problems.push(format!(
+                "vertices: vertex {k} (sites {:?}) at {}: error {} ({} eps): {why}",
+                self.vgens[k].as_deref().unwrap_or(&[]),
+                at(vs[k].at),
+                fmt_g3(e),
+                fmt_g3(e / self.scene.epsilon)
+            ));
+        }
+        if bad.len() > MAX_LIST {
+            problems.push(format!(
+                "vertices: ... and {} more bad vertices",
+                bad.len() - MAX_LIST
+            ));
+        }
+        ((ok, vs.len()), ok == vs.len())
+    }
+
+    /// The crossings of the bisectors between the nearest sites `a` at `qa` and `b` at
+    /// `qb`: bisection of `d_a − d_b` (14 steps); where a third site is nearer at the
+    /// crossing, both halves are searched again (depth ≤ 4). Crossings in ties of
+    /// coincident feet and inside closed sites are skipped.
+    fn crossings(
+        &self,
+        qa: Point,
+        qb: Point,
+        a: usize,
+        b: usize,
+        depth: u32,
+        out: &mut Vec<(Point, usize, usize)>,
+    ) {
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..14 {
+            let mid = 0.5 * (lo + hi);
+            let q = qa.lerp(qb, mid);
+            if self.fields[a].value(q) <= self.fields[b].value(q) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let x = qa.lerp(qb, 0.5 * (lo + hi));
+        let Some(hit) = self.near.at(x) else {
+            return;
+        };
+        let (da, ga) = self.eval(a, x);
+        let (db, gb) = self.eval(b, x);
+        let (dmin, gmin) = if da <= db { (da, ga) } else { (db, gb) };
+        let k = hit.site;
+        if k != a && k != b && depth < 4 {
+            let (_, gk) = self.eval(k, x);
+            if (dmin - hit.value) / (gmin - gk).norm().max(1e-12) > 1e-9 * self.scale {
+                self.crossings(qa, x, a, k, depth + 1, out);
+                self.crossings(x, qb, k, b, depth + 1, out);
+                return;
+            }
+        }
+        let tie = match (self.fields[a].foot(x), self.fields[b].foot(x)) {
+            (Some(fa), Some(fb)) => fa.dist(fb) <= 1e-7 * self.scale,
+            _ => false,
+        };
+        if !tie {
+            out.push((x, a, b));
+        }
+    }
+
+    /// Check c: returns the fraction of covered crossings.
+    fn completeness(&self, problems: &mut Vec<String>) -> f64 {
+        let dom = self.scene.domain;
+        let n = self.opts.grid.max(2);
+        let (hx, hy) = (dom.width() / n as f64, dom.height() / n as f64);
+        let r = 2.0 * self.tol + hx.max(hy);
+        let node = |i: usize, j: usize| {
+            Point::new(
+                dom.min.x + (i as f64 + 0.5) * hx,
+                dom.min.y + (j as f64 + 0.5) * hy,
+            )
+        };
+        let labels = par_map(n * n, |k| self.near.at(node(k % n, k / n)).map(|h| h.site));
+        let mut pairs = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let Some(a) = labels[j * n + i] else { continue };
+                for (di, dj) in [(1, 0), (0, 1)] {
+                    if i + di < n && j + dj < n {
+                        if let Some(b) = labels[(j + dj) * n + i + di] {
+                            if a != b {
+                                pairs.push((node(i, j), node(i + di, j + dj), a, b));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let found = par_map(pairs.len(), |p| {
+            let (qa, qb, a, b) = pairs[p];
+            let mut out = Vec::new();
+            self.crossings(qa, qb, a, b, 0, &mut out);
+            out
+        });
+        let crossings: Vec<(Point, usize, usize)> = found.into_iter().flatten().collect();
+        // the output edges as pieces of length ≤ R, bucketed by their midpoints
+        let mut pieces: Vec<(Point, Point, (usize, usize))> = Vec::new();
+        for ge in &self.edges {
+            let key = (ge.a.min(ge.b), ge.a.max(ge.b));
+            for w in self.diagram.edges[ge.index].points.windows(2) {
+                let m = ((w[1].dist(w[0]) / r).ceil() as usize).max(1);
+                pieces.extend((0..m).map(|j| {
+                    let t = |j: usize| j as f64 / m as f64;
+                    (w[0].lerp(w[1], t(j)), w[0].lerp(w[1], t(j + 1)), key)
+                }));
+            }
+        }
+        let mids: Vec<Point> = pieces.iter().map(|p| p.0.lerp(p.1, 0.5)).collect();
+        let pb = Buckets::new(&mids, dom, r);
+        let vat: Vec<Point> = self.diagram.vertices.iter().map(|v| v.at).collect();
+        let vb = Buckets::new(&vat, dom, r);
+        let covered = par_map(crossings.len(), |c| {
+            let (x, a, b) = crossings[c];
+            let key = (a.min(b), a.max(b));
+            // a piece's midpoint lies within R + R/2 of x: at most 2 cells away
+            pb.around(x, 2)
+                .any(|p| pieces[p].2 == key && seg_dist(x, pieces[p].0, pieces[p].1) <= r)
+                || vb.around(x, 1).any(|v| {
+                    vat[v].dist(x) <= r
+                        && self.vgens[v]
+                            .as_ref()
+                            .is_some_and(|g| g.contains(&a) && g.contains(&b))
+                })
+        });
+        let mut missing: BTreeMap<(usize, usize), (usize, Point)> = BTreeMap::new();
+        for (c, &ok) in covered.iter().enumerate() {
+            if !ok {
+                let (x, a, b) = crossings[c];
+                missing.entry((a.min(b), a.max(b))).or_insert((0, x)).0 += 1;
+            }
+        }
+        let mut miss: Vec<_> = missing.into_iter().collect();
+        miss.sort_by_key(|m| std::cmp::Reverse(m.1 .0));
+        for &((a, b), (count, x)) in miss.iter().take(MAX_LIST) {
+            problems.push(format!(
+                "completeness: no edge between sites {a} and {b} near {} ({count} crossings uncovered)",
+                at(x)
+            ));
+        }
+        if miss.len() > MAX_LIST {
+            problems.push(format!(
+                "completeness: ... and {} more missing pairs",
+                miss.len() - MAX_LIST
+            ));
+        }
+        let good = covered.iter().filter(|&&c| c).count();
+        if crossings.is_empty() {
+            1.0
+        } else {
+            good as f64 / crossings.len() as f64
+        }
+    }
+
+    /// Check d: the edge ends (the labels were checked by `parse`).
+    fn structure(&mut self) {
+        let d = self.diagram;
+        let dom = self.scene.domain;
+        let nv = d.vertices.len();
+        let mut degree = vec![0usize; nv];
+        let mut errors = Vec::new();
+        let mut warnings = Vec::new();
+        let mut edge_gens = vec![None; d.edges.len()];
+        for g in &self.edges {
+            edge_gens[g.index] = Some([g.a, g.b]);
+        }
+        for (k, e) in d.edges.iter().enumerate() {
+            if e.points.is_empty() {
+                continue;
+            }
+            let gens = edge_gens[k];
+            let (first, last) = (e.points[0], e.points[e.points.len() - 1]);
+            let is_loop = e.from.is_none()
+                && e.to.is_none()
+                && e.points.len() > 2
+                && first.dist(last) <= self.tol;
+            for (name, end, p) in [("from", e.from, first), ("to", e.to, last)] {
+                match end {
+                    Some(v) if v >= nv => errors.push(format!(
+                        "edge {k}: '{name}' = {v} is not a vertex index or null"
+                    )),
+                    Some(v) => {
+                        degree[v] += 1;
+                        let dv = p.dist(d.vertices[v].at);
+                        if dv > self.tol {
+                            errors.push(format!(
+                                "edge {k}: '{name}' end {} is {} ({} eps) from vertex {v} at {}",
+                                at(p),
+                                fmt_g3(dv),
+                                fmt_g3(dv / self.scene.epsilon),
+                                at(d.vertices[v].at)
+                            ));
+                        }
+                        if let (Some(g), Some(vg)) = (gens, &self.vgens[v]) {
+                            for s in g.iter().filter(|s| !vg.contains(s)) {
+                                errors.push(format!(
+                                    "edge {k}: vertex {v} ('{name}') does not list its generator {s}"
+                                ));
+                            }
+                        }
+                    }
+                    None if is_loop => {}
+                    None => {
+                        let db = (p.x - dom.min.x)
+                            .abs()
+                            .min((p.x - dom.max.x).abs())
+                            .min((p.y - dom.min.y).abs())
+                            .min((p.y - dom.max.y).abs());
+                        if db <= self.tol {
+                            continue;
+                        }
+                        let on_site = self
+                            .near
+                            .at(p)
+                            .is_none_or(|h| self.fields[h.site].distance_to_site(p) <= self.tol);
+                        if on_site {
+                            warnings.push(format!(
+                                "edge {k}: null '{name}' end {} ends on a site, not on the domain boundary",
+                                at(p)
+                            ));
+                        } else {
+                            errors.push(format!(
+                                "edge {k}: null '{name}' end {} is not on the domain boundary ({} away) and not a closed loop",
+                                at(p),
+                                fmt_g3(db)
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+        let iso = degree.iter().filter(|&&g| g == 0).count();
+        if iso > 0 {
+            warnings.push(format!("{iso} vertices are not referenced by any edge"));
+        }
+        self.errors.extend(errors);
+        self.warnings.extend(warnings);
+    }
+}
+
+/// Solves the 3 × 3 system `m x = b` by Gaussian elimination with partial pivoting.
+fn solve3(mut m: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+    for c in 0..3 {
+        let p = (c..3).max_by(|&i, &j| m[i][c].abs().total_cmp(&m[j][c].abs()))?;
+        if m[p][c] == 0.0 {
+            return None;
+        }
+        m.swap(c, p);
+        b.swap(c, p);
+        let (pivot, rows) = m.split_at_mut(c + 1);
+        let pivot = pivot[c];
+        for (r, row) in rows.iter_mut().enumerate() {
+            let f = row[c] / pivot[c];
+            for (x, p) in row.iter_mut().zip(pivot).skip(c) {
+                *x -= f * p;
+            }
+            b[c + 1 + r] -= f * b[c];
+        }
+    }
+    let mut x = [0.0; 3];
+    for r in (0..3).rev() {
+        let s: f64 = (r + 1..3).map(|k| m[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / m[r][r];
+    }
+    Some(x)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,482 @@
+use super::*;
+use crate::complex::{Edge, Vertex};
+use crate::num::poly::Poly;
+use crate::scene::{Equation, Metric, Site, SiteKind};
+
+const EPS: f64 = 1e-3;
+
+fn domain() -> Aabb {
+    Aabb::from_array([-1.0, -1.0, 1.0, 1.0])
+}
+
+fn scene(sites: Vec<SiteKind>) -> Scene {
+    Scene {
+        domain: domain(),
+        epsilon: EPS,
+        mode: Mode::Voronoi,
+        sites: sites
+            .into_iter()
+            .map(|kind| Site { id: None, kind })
+            .collect(),
+    }
+}
+
+fn euclid(p: &[(f64, f64)]) -> Vec<SiteKind> {
+    p.iter()
+        .map(|&(x, y)| SiteKind::Point {
+            at: Point::new(x, y),
+            metric: Metric::Euclidean,
+        })
+        .collect()
+}
+
+fn edge(a: usize, b: usize, from: Option<usize>, to: Option<usize>, pts: &[Point]) -> Edge {
+    Edge {
+        sites: [Generator::Site(a), Generator::Site(b)],
+        from,
+        to,
+        points: pts.to_vec(),
+    }
+}
+
+fn vertex(at: Point, sites: &[usize]) -> Vertex {
+    Vertex {
+        at,
+        sites: sites.iter().map(|&s| Generator::Site(s)).collect(),
+    }
+}
+
+fn check(s: &Scene, d: &VoronoiComplex) -> Report {
+    verify(s, d, &VerifyOptions::default()).unwrap()
+}
+
+/// Where the ray `c + t d` (t ≥ 0, `c` inside) leaves the domain.
+fn ray_exit(c: Point, d: Point, dom: Aabb) -> Point {
+    let along = |p: f64, v: f64, lo: f64, hi: f64| {
+        if v > 0.0 {
+            (hi - p) / v
+        } else if v < 0.0 {
+            (lo - p) / v
+        } else {
+            f64::INFINITY
+        }
+    };
+    let t = along(c.x, d.x, dom.min.x, dom.max.x).min(along(c.y, d.y, dom.min.y, dom.max.y));
+    c + d * t
+}
+
+fn circumcenter(a: Point, b: Point, c: Point) -> Point {
+    let d = 2.0 * (a.x * (b.y - c.y) + b.x * (c.y - a.y) + c.x * (a.y - b.y));
+    let (a2, b2, c2) = (a.dot(a), b.dot(b), c.dot(c));
+    Point::new(
+        (a2 * (b.y - c.y) + b2 * (c.y - a.y) + c2 * (a.y - b.y)) / d,
+        (a2 * (c.x - b.x) + b2 * (a.x - c.x) + c2 * (b.x - a.x)) / d,
+    )
+}
+
+fn two_points() -> (Scene, VoronoiComplex) {
+    let s = scene(euclid(&[(-0.5, 0.1), (0.5, 0.1)]));
+    let d = VoronoiComplex {
+        edges: vec![edge(
+            0,
+            1,
+            None,
+            None,
+            &[Point::new(0.0, -1.0), Point::new(0.0, 1.0)],
+        )],
+        ..Default::default()
+    };
+    (s, d)
+}
+
+fn three_points() -> (Scene, VoronoiComplex) {
+    let p = [
+        Point::new(-0.5, -0.3),
+        Point::new(0.5, -0.35),
+        Point::new(0.1, 0.6),
+    ];
+    let s = scene(euclid(&[
+        (p[0].x, p[0].y),
+        (p[1].x, p[1].y),
+        (p[2].x, p[2].y),
+    ]));
+    let c = circumcenter(p[0], p[1], p[2]);
+    let mut d = VoronoiComplex {
+        vertices: vec![vertex(c, &[0, 1, 2])],
+        ..Default::default()
+    };
+    for (i, j, k) in [(0, 1, 2), (1, 2, 0), (0, 2, 1)] {
+        let mut dir = (p[j] - p[i]).perp();
+        if dir.dot(p[i] - p[k]) < 0.0 {
+            dir = dir * -1.0;
+        }
+        d.edges
+            .push(edge(i, j, Some(0), None, &[c, ray_exit(c, dir, domain())]));
+    }
+    (s, d)
+}
+
+#[test]
+fn exact_diagrams_pass() {
+    let (s, d) = two_points();
+    let r = check(&s, &d);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+    let (s, d) = three_points();
+    let r = check(&s, &d);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+    assert_eq!(r.vertices_ok, (1, 1));
+    assert!(r.summary_line().ends_with("PASS"));
+}
+
+#[test]
+fn square_with_degree_four_vertex_passes() {
+    let s = scene(euclid(&[
+        (-0.5, -0.5),
+        (0.5, -0.5),
+        (0.5, 0.5),
+        (-0.5, 0.5),
+    ]));
+    let o = Point::default();
+    let d = VoronoiComplex {
+        vertices: vec![vertex(o, &[0, 1, 2, 3])],
+        edges: vec![
+            edge(0, 1, Some(0), None, &[o, Point::new(0.0, -1.0)]),
+            edge(1, 2, Some(0), None, &[o, Point::new(1.0, 0.0)]),
+            edge(2, 3, Some(0), None, &[o, Point::new(0.0, 1.0)]),
+            edge(3, 0, Some(0), None, &[o, Point::new(-1.0, 0.0)]),
+        ],
+        ..Default::default()
+    };
+    let r = check(&s, &d);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+}
+
+#[test]
+fn power_points_pass_and_euclidean_bisector_fails() {
+    let power = |x: f64, w: f64| SiteKind::Point {
+        at: Point::new(x, 0.0),
+        metric: Metric::Power { weight: w },
+    };
+    let s = scene(vec![power(-0.5, 0.4), power(0.5, 0.1)]);
+    // (x + 0.5)² − 0.16 = (x − 0.5)² − 0.01  ⇔  x = 0.075
+    let line = |x: f64| edge(0, 1, None, None, &[Point::new(x, -1.0), Point::new(x, 1.0)]);
+    let good = VoronoiComplex {
+        edges: vec![line(0.075)],
+        ..Default::default()
+    };
+    let r = check(&s, &good);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+    let euclidean = VoronoiComplex {
+        edges: vec![line(0.0)],
+        ..Default::default()
+    };
+    let r = check(&s, &euclidean);
+    assert!(
+        !r.passed && r.sound == 0.0 && r.complete < 1.0,
+        "{}",
+        r.summary_line()
+    );
+}
+
+#[test]
+fn moved_vertex_fails_vertex_check() {
+    let (s, mut d) = three_points();
+    d.vertices[0].at = d.vertices[0].at + Point::new(10.0 * EPS, 0.0);
+    let r = check(&s, &d);
+    assert!(!r.passed);
+    assert_eq!(r.vertices_ok, (0, 1), "{}", r.summary_line());
+    assert!(
+        r.problems
+            .iter()
+            .any(|p| p.contains("vertex 0") && p.contains("not tied")),
+        "{:?}",
+        r.problems
+    );
+    // the edge ends now lie 10 eps from the vertex they name
+    assert!(
+        r.problems
+            .iter()
+            .any(|p| p.starts_with("structure: edge 0: 'from' end")),
+        "{:?}",
+        r.problems
+    );
+}
+
+#[test]
+fn dropped_edge_fails_completeness() {
+    let (s, mut d) = three_points();
+    d.edges.remove(1);
+    let r = check(&s, &d);
+    assert!(!r.passed && r.complete < 0.9, "{}", r.summary_line());
+    assert_eq!(r.sound, 1.0);
+    assert!(
+        r.problems
+            .iter()
+            .any(|p| p.contains("no edge between sites 1 and 2")),
+        "{:?}",
+        r.problems
+    );
+}
+
+#[test]
+fn swapped_labels_fail_soundness() {
+    let (s, mut d) = three_points();
+    let (a, b) = (d.edges[0].sites, d.edges[1].sites);
+    d.edges[0].sites = b;
+    d.edges[1].sites = a;
+    let r = check(&s, &d);
+    assert!(
+        !r.passed && r.sound < 0.5 && r.complete < 1.0,
+        "{}",
+        r.summary_line()
+    );
+    assert!(
+        r.problems
+            .iter()
+            .any(|p| p.starts_with("soundness: edge 0")),
+        "{:?}",
+        r.problems
+    );
+}
+
+#[test]
+fn bent_edge_fails_beyond_tolerance_only() {
+    let bent = |by: f64| {
+        let (s, mut d) = two_points();
+        d.edges[0].points = vec![
+            Point::new(0.0, -1.0),
+            Point::new(by, 0.0),
+            Point::new(0.0, 1.0),
+        ];
+        check(&s, &d)
+    };
+    let r = bent(3.0 * EPS);
+    assert!(!r.passed && r.sound < 1.0, "{}", r.summary_line());
+    assert!(
+        (r.worst_edge_error - 3.0 * EPS).abs() < 1e-6,
+        "{}",
+        r.worst_edge_error
+    );
+    let r = bent(0.5 * EPS);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+}
+
+#[test]
+fn dangling_end_and_bad_labels_fail_structure() {
+    let (s, mut d) = two_points();
+    d.edges[0].points[1] = Point::new(0.0, 0.5);
+    let r = check(&s, &d);
+    assert!(!r.passed, "{}", r.summary_line());
+    assert!(
+        r.problems
+            .iter()
+            .any(|p| p.contains("not on the domain boundary")),
+        "{:?}",
+        r.problems
+    );
+    let (s, mut d) = two_points();
+    d.edges[0].sites[1] = Generator::Site(7);
+    let r = check(&s, &d);
+    assert!(
+        !r.passed
+            && r.problems
+                .iter()
+                .any(|p| p.contains("site 7 does not exist"))
+    );
+}
+
+#[test]
+fn implicit_field_and_segments() {
+    // (x + 0.5)² + y² − (z + 0.2)²: the circle of radius 0.2 about (−0.5, 0)
+    let g = Poly {
+        terms: vec![
+            ([0, 0, 0], 0.21),
+            ([0, 0, 1], -0.4),
+            ([0, 0, 2], -1.0),
+            ([0, 2, 0], 1.0),
+            ([1, 0, 0], 1.0),
+            ([2, 0, 0], 1.0),
+        ],
+    };
+    let implicit = SiteKind::ImplicitField {
+        equation: Equation {
+            text: "(x+0.5)^2 + y^2 - (z+0.2)^2".into(),
+            poly: g,
+        },
+    };
+    let circle = SiteKind::Circle {
+        center: Point::new(0.5, 0.0),
+        radius: 0.2,
+    };
+    let (_, d) = two_points();
+    let r = check(&scene(vec![implicit, circle]), &d);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+    let seg = |x: f64| SiteKind::Segment {
+        from: Point::new(x, -0.5),
+        to: Point::new(x, 0.5),
+    };
+    let r = check(&scene(vec![seg(-0.5), seg(0.5)]), &d);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+}
+
+#[test]
+fn unsupported_kinds_and_modes_are_refused() {
+    let mut s = scene(vec![SiteKind::Polyline {
+        points: vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)],
+    }]);
+    let d = VoronoiComplex::default();
+    assert!(matches!(
+        verify(&s, &d, &VerifyOptions::default()),
+        Err(Error::Unsupported { site: 0, .. })
+    ));
+    s.mode = Mode::Complex;
+    assert!(matches!(
+        verify(&s, &d, &VerifyOptions::default()),
+        Err(Error::Scene { .. })
+    ));
+}
+
+#[test]
+fn summary_numbers_format_like_python() {
+    assert_eq!(fmt_g3(0.0012), "0.0012");
+    assert_eq!(fmt_g3(0.00123456), "0.00123");
+    assert_eq!(fmt_g3(1.5e-5), "1.5e-05");
+    assert_eq!(fmt_g3(12.345), "12.3");
+    assert_eq!(fmt_g3(1234.0), "1.23e+03");
+    assert_eq!(fmt_g3(0.0), "0");
+}
+
+/// The Euclidean Voronoi diagram of `p` clipped to `dom`, from spade's Delaunay
+/// triangulation: one edge per Delaunay edge, between the circumcentres of its faces
+/// (a ray outwards on the hull), clipped to the box.
+fn spade_diagram(p: &[Point], dom: Aabb) -> VoronoiComplex {
+    use spade::handles::{FixedFaceHandle, InnerTag};
+    use spade::{DelaunayTriangulation, Point2, Triangulation};
+    let mut t = DelaunayTriangulation::<Point2<f64>>::new();
+    for q in p {
+        t.insert(Point2::new(q.x, q.y)).unwrap();
+    }
+    let pt = |q: Point2<f64>| Point::new(q.x, q.y);
+    let mut d = VoronoiComplex::default();
+    let mut vid = std::collections::HashMap::<FixedFaceHandle<InnerTag>, usize>::new();
+    for f in t.inner_faces() {
+        let c = pt(f.circumcenter());
+        if dom.contains(c) {
+            vid.insert(f.fix(), d.vertices.len());
+            let s: Vec<usize> = f.vertices().iter().map(|v| v.fix().index()).collect();
+            d.vertices.push(vertex(c, &s));
+        }
+    }
+    for e in t.undirected_edges() {
+        let e = e.as_directed();
+        let (a, b) = (e.from().fix().index(), e.to().fix().index());
+        let (fa, fb) = (e.face().as_inner(), e.rev().face().as_inner());
+        // the Voronoi edge as c0 + t·dir, t ∈ [0, t1]
+        let (c0, f0, dir, t1, f1) = match (fa, fb) {
+            (Some(f), Some(g)) => {
+                let (c, c1) = (pt(f.circumcenter()), pt(g.circumcenter()));
+                (c, Some(f.fix()), c1 - c, 1.0, Some(g.fix()))
+            }
+            (Some(f), None) | (None, Some(f)) => {
+                let c = pt(f.circumcenter());
+                let (pa, pb) = (pt(e.from().position()), pt(e.to().position()));
+                let third = f
+                    .vertices()
+                    .iter()
+                    .map(|v| pt(v.position()))
+                    .find(|&q| q != pa && q != pb)
+                    .unwrap();
+                let mut dir = (pb - pa).perp();
+                if dir.dot(pa - third) < 0.0 {
+                    dir = dir * -1.0;
+                }
+                (c, Some(f.fix()), dir, f64::INFINITY, None)
+            }
+            (None, None) => continue,
+        };
+        // Liang–Barsky clipping
+        let (mut lo, mut hi) = (0.0f64, t1);
+        for (p0, v, min, max) in [
+            (c0.x, dir.x, dom.min.x, dom.max.x),
+            (c0.y, dir.y, dom.min.y, dom.max.y),
+        ] {
+            if v == 0.0 {
+                if p0 < min || p0 > max {
+                    hi = -1.0;
+                }
+                continue;
+            }
+            let (ta, tb) = ((min - p0) / v, (max - p0) / v);
+            lo = lo.max(ta.min(tb));
+            hi = hi.min(ta.max(tb));
+        }
+        if hi <= lo {
+            continue;
+        }
+        let end = |f: Option<FixedFaceHandle<InnerTag>>, t: f64, lim: f64| {
+            if t == lim {
+                f.and_then(|f| vid.get(&f).copied())
+            } else {
+                None
+            }
+        };
+        d.edges.push(edge(
+            a,
+            b,
+            end(f0, lo, 0.0),
+            end(f1, hi, t1),
+            &[c0 + dir * lo, c0 + dir * hi],
+        ));
+    }
+    d
+}
+
+fn random_points(n: usize, seed: u64) -> Vec<Point> {
+    let mut s = seed;
+    let mut next = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64 * 1.8 - 0.9
+    };
+    (0..n).map(|_| Point::new(next(), next())).collect()
+}
+
+fn random_check(n: usize, grid: usize) -> (Report, std::time::Duration) {
+    let p = random_points(n, 0x9e3779b97f4a7c15);
+    let s = scene(
+        p.iter()
+            .map(|q| SiteKind::Point {
+                at: *q,
+                metric: Metric::Euclidean,
+            })
+            .collect(),
+    );
+    let d = spade_diagram(&p, domain());
+    let opts = VerifyOptions {
+        grid,
+        ..Default::default()
+    };
+    let t = std::time::Instant::now();
+    let r = verify(&s, &d, &opts).unwrap();
+    (r, t.elapsed())
+}
+
+#[test]
+fn random_points_against_delaunay_pass() {
+    let (r, _) = random_check(150, 256);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+}
+
+/// `cargo test --release -p gvd --lib verify -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn timing_800_points_grid_512() {
+    let (r, t) = random_check(800, 512);
+    println!(
+        "800 points, grid 512: {} in {:.2} s",
+        r.summary_line(),
+        t.as_secs_f64()
+    );
+    assert!(r.passed, "{:?}", r.problems);
+}

@@ -2,6 +2,7 @@
 //! `parse.rs`; every refusal is an [`Error`] naming the site index and the field.
 
 mod parse;
+mod validate;
 
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
@@ -41,15 +42,43 @@ pub struct Equation {
 /// A validated site.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SiteKind {
-    Point { at: Point, metric: Metric },
-    Circle { center: Point, radius: f64 },
-    Ellipse { center: Point, semi_axes: [f64; 2], rotation: f64 },
-    Segment { from: Point, to: Point },
-    Arc { center: Point, radius: f64, start_angle: f64, end_angle: f64 },
-    Polyline { points: Vec<Point> },
-    Polygon { rings: Vec<Vec<Point>> },
-    Algebraic { equation: Equation, clip: Option<Aabb> },
-    Bezier { control_points: Vec<Point>, weights: Option<Vec<f64>> },
+    Point {
+        at: Point,
+        metric: Metric,
+    },
+    Circle {
+        center: Point,
+        radius: f64,
+    },
+    Ellipse {
+        center: Point,
+        semi_axes: [f64; 2],
+        rotation: f64,
+    },
+    Segment {
+        from: Point,
+        to: Point,
+    },
+    Arc {
+        center: Point,
+        radius: f64,
+        start_angle: f64,
+        end_angle: f64,
+    },
+    Polyline {
+        points: Vec<Point>,
+    },
+    Polygon {
+        rings: Vec<Vec<Point>>,
+    },
+    Algebraic {
+        equation: Equation,
+        clip: Option<Aabb>,
+    },
+    Bezier {
+        control_points: Vec<Point>,
+        weights: Option<Vec<f64>>,
+    },
     Bspline {
         degree: usize,
         control_points: Vec<Point>,
@@ -58,9 +87,13 @@ pub enum SiteKind {
         closed: bool,
     },
     /// An explicit polynomial distance field in `x`, `y`.
-    Field { equation: Equation },
+    Field {
+        equation: Equation,
+    },
     /// The smallest non-negative root `z` of `g(x, y, z)`.
-    ImplicitField { equation: Equation },
+    ImplicitField {
+        equation: Equation,
+    },
 }
 
 impl SiteKind {

@@ -64,7 +64,7 @@ impl Poly {
 
     /// Normalises arbitrary terms: sorts, merges equal exponents, drops zero coefficients.
     pub fn from_terms(mut terms: Vec<([u32; 3], f64)>) -> Poly {
-        terms.sort_by(|a, b| a.0.cmp(&b.0));
+        terms.sort_unstable_by_key(|a| a.0);
         let mut out: Vec<([u32; 3], f64)> = Vec::with_capacity(terms.len());
         for (e, c) in terms {
             match out.last_mut() {

@@ -83,8 +83,9 @@ impl Poly {
     /// Parses text such as `(x^2+y^2-1)^3 + 27*x^2*y^2`; `vars` lists the allowed
     /// variable names (a subset of `x`, `y`, `z`; `x` is variable 0, `y` 1, `z` 2).
     ///
-    /// Grammar: `+ - * ^`, unary signs, parentheses, decimal numbers (`1.5`, `2e-3`,
-    /// `.5`), whitespace anywhere; `^` takes a non-negative integer literal ≤ 64. The
+    /// Grammar: `+ - * ^`, `/` by a nonzero constant (`1/4*y`; the quotient is rounded
+    /// to f64), unary signs, parentheses, decimal numbers (`1.5`, `2e-3`, `.5`),
+    /// whitespace anywhere; `^` takes a non-negative integer literal ≤ 64. The
     /// result is expanded; expansions beyond 100 000 terms or degree 1024 in a variable and
     /// non-finite coefficients are errors (the parser never panics and its work is bounded).
     pub fn parse(text: &str, vars: &[char]) -> Result<Poly, ParseError> {
@@ -309,7 +310,7 @@ impl fmt::Display for Poly {
     }
 }
 
-/// Recursive-descent parser: `expr := term (± term)*`, `term := unary (* unary)*`,
+/// Recursive-descent parser: `expr := term (± term)*`, `term := unary ((*|/) unary)*`,
 /// `unary := ± unary | power`, `power := primary (^ integer)?`,
 /// `primary := number | variable | ( expr )`.
 struct Parser<'a> {
@@ -371,11 +372,19 @@ impl Parser<'_> {
 
     fn term(&mut self) -> Result<Poly, ParseError> {
         let mut acc = self.unary()?;
-        while self.peek() == Some(b'*') {
+        while let Some(c @ (b'*' | b'/')) = self.peek() {
             let at = self.pos;
             self.pos += 1;
             let rhs = self.unary()?;
-            acc = self.op(at, acc.checked_mul(&rhs, MAX_TERMS, MAX_PRODUCT_WORK))?;
+            acc = if c == b'*' {
+                self.op(at, acc.checked_mul(&rhs, MAX_TERMS, MAX_PRODUCT_WORK))?
+            } else {
+                match rhs.terms.as_slice() {
+                    [([0, 0, 0], d)] => acc.scale(1.0 / d),
+                    [] => return Err(self.err_at(at, "division by zero")),
+                    _ => return Err(self.err_at(at, "division only by a constant")),
+                }
+            };
         }
         Ok(acc)
     }
@@ -544,6 +553,13 @@ mod tests {
         let h = |x: f64, y: f64, z: f64| (x - 1.0).powi(2) + y * y - (z + 0.5).powi(2);
         assert!((r.eval(0.25, 2.0, -3.0) - h(0.25, 2.0, -3.0)).abs() < 1e-12);
 
+        let q = Poly::parse("1/4*y + (x - 1/2)^2 - 1/4", XY).unwrap();
+        assert_eq!(q, Poly::parse("0.25*y + (x - 0.5)^2 - 0.25", XY).unwrap());
+        assert_eq!(
+            Poly::parse("x/2/2", XY).unwrap(),
+            Poly::parse("0.25*x", XY).unwrap()
+        );
+
         let n = Poly::parse("-2e-3*x + .5 - -x*3", XY).unwrap();
         assert!((n.eval(2.0, 0.0, 0.0) - (-4e-3 + 0.5 + 6.0)).abs() < 1e-15);
     }
@@ -561,7 +577,22 @@ mod tests {
         let e = Poly::parse("2^100", XY).unwrap_err();
         assert!(e.message.contains("exponent"), "{e}");
         for bad in [
-            "", "(x", "x)", "2x", "x^2.5", "x^-1", "x^2^2", "1e", "1e999", "+", "xy", "x $ y",
+            "",
+            "(x",
+            "x)",
+            "2x",
+            "x/y",
+            "1/0",
+            "x/(y-y)",
+            "1/(1e-320*1e-10)",
+            "x^2.5",
+            "x^-1",
+            "x^2^2",
+            "1e",
+            "1e999",
+            "+",
+            "xy",
+            "x $ y",
         ] {
             assert!(Poly::parse(bad, XY).is_err(), "accepted {bad:?}");
         }

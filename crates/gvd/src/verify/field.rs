@@ -6,7 +6,7 @@ use crate::error::Error;
 use crate::geom::Point;
 use crate::num::poly::Poly;
 use crate::scene::{Metric, Scene, SiteKind};
-use std::f64::consts::{FRAC_PI_2, TAU};
+use std::f64::consts::TAU;
 
 /// One site's distance field, prepared for evaluation.
 #[derive(Clone, Debug)]
@@ -358,46 +358,44 @@ fn segment_foot(a: Point, b: Point, q: Point) -> Point {
     a.lerp(b, t)
 }
 
-/// The nearest point of the axis-aligned ellipse `(a cos t, b sin t)` to `q`. By
-/// symmetry the first quadrant suffices; there the foot's angle `t ∈ [0, π/2]` is the
-/// root of `φ(t) = (a² − b²) sin t cos t − a x sin t + b y cos t`, which is unique for
-/// points outside the evolute (`φ(0) ≥ 0 ≥ φ(π/2)`). Newton steps, safeguarded by
-/// bisection of the bracket; from inside points it returns one stationary foot.
+/// The nearest point of the axis-aligned ellipse `(x/a)² + (y/b)² = 1` to an outside
+/// point `q`. By symmetry take `q` in the first quadrant and `a ≥ b` (else swap the
+/// axes). The foot is `(a² x / (t + a²), b² y / (t + b²))` where `t ≥ 0` is the root of
+/// `F(t) = (a x / (t + a²))² + (b y / (t + b²))² − 1` (Eberly). `F` is convex and
+/// decreasing for `t > −b²` with `F(0) ≥ 0` outside, so Newton from `t = 0` increases
+/// monotonically to the root: no safeguard is needed. (On the angle parameter the
+/// stationary equation can have several roots in the quadrant when `q` lies inside the
+/// evolute.) For an inside point it returns the radial projection onto the curve.
 fn ellipse_foot(a: f64, b: f64, q: Point) -> Point {
-    let (x, y) = (q.x.abs(), q.y.abs());
-    let phi = |t: f64| {
-        let (s, c) = t.sin_cos();
-        (a * a - b * b) * s * c - a * x * s + b * y * c
-    };
-    let dphi = |t: f64| {
-        let (s, c) = t.sin_cos();
-        (a * a - b * b) * (c * c - s * s) - a * x * c - b * y * s
-    };
-    let (mut lo, mut hi) = (0.0, FRAC_PI_2);
-    let mut t = (b * y).atan2(a * x).clamp(lo, hi);
-    for _ in 0..100 {
-        let f = phi(t);
-        if f == 0.0 {
-            break;
-        }
-        if f > 0.0 {
-            lo = t;
-        } else {
-            hi = t;
-        }
-        let d = dphi(t);
-        let nt = t - f / d;
-        t = if d != 0.0 && nt > lo && nt < hi {
-            nt
-        } else {
-            0.5 * (lo + hi)
-        };
-        if hi - lo <= 1e-15 || (f / d).abs() <= 1e-16 {
-            break;
-        }
+    if a < b {
+        let f = ellipse_foot(b, a, Point::new(q.y, q.x));
+        return Point::new(f.y, f.x);
     }
-    let (s, c) = t.sin_cos();
-    Point::new((a * c).copysign(q.x), (b * s).copysign(q.y))
+    let (x, y) = (q.x.abs(), q.y.abs());
+    let s = ((x / a).powi(2) + (y / b).powi(2)).sqrt();
+    if s <= 1.0 {
+        return if s > 0.0 {
+            q * (1.0 / s)
+        } else {
+            Point::new(a, 0.0)
+        };
+    }
+    let (a2, b2) = (a * a, b * b);
+    let mut t = 0.0f64;
+    for _ in 0..200 {
+        let (u, v) = (a * x / (t + a2), b * y / (t + b2));
+        let f = u * u + v * v - 1.0;
+        let df = -2.0 * (u * u / (t + a2) + v * v / (t + b2));
+        let step = -f / df;
+        if !(step > 0.0) || t + step == t {
+            break;
+        }
+        t += step;
+    }
+    Point::new(
+        (a2 * x / (t + a2)).copysign(q.x),
+        (b2 * y / (t + b2)).copysign(q.y),
+    )
 }
 
 /// The coefficients `c_k` of `g(x, y, z) = Σ c_k z^k` at `q = (x, y)`.
@@ -555,17 +553,36 @@ mod tests {
             c: Point::new(1.0, 0.0),
             a: 2.0,
             b: 1.0,
-            rot: FRAC_PI_2,
+            rot: std::f64::consts::FRAC_PI_2,
         };
         // rotated by 90°: the major axis is vertical
         assert!((e.value(Point::new(1.0, 3.0)) - 1.0).abs() < 1e-12);
         assert!((e.value(Point::new(3.0, 0.0)) - 1.0).abs() < 1e-12);
         assert_eq!(e.value(Point::new(1.2, 0.3)), 0.0);
+        // an elongated ellipse seen from inside its evolute: the nearest foot is the
+        // co-vertex side, at distance 0.5 (the angle equation has several roots there)
+        let long = Field::Ellipse {
+            c: Point::default(),
+            a: 3.0,
+            b: 1.0,
+            rot: 0.0,
+        };
+        assert!((long.value(Point::new(0.0, 1.5)) - 0.5).abs() < 1e-12);
+        let q = Point::new(0.4, 1.5);
+        let brute = (0..200_000)
+            .map(|k| {
+                let t = k as f64 * TAU / 200_000.0;
+                q.dist(Point::new(3.0 * t.cos(), t.sin()))
+            })
+            .fold(f64::INFINITY, f64::min);
+        // sampling overestimates by O(Δt²)
+        let v = long.value(q);
+        assert!(v <= brute && brute - v < 1e-8, "{v} {brute}");
         let arc = Field::Arc {
             c: Point::default(),
             r: 1.0,
             start: 0.0,
-            sweep: FRAC_PI_2,
+            sweep: std::f64::consts::FRAC_PI_2,
         };
         assert!((arc.value(Point::new(2.0, 2.0)) - (8f64.sqrt() - 1.0)).abs() < 1e-12);
         assert!((arc.value(Point::new(0.0, -1.0)) - 2f64.sqrt()).abs() < 1e-12);

@@ -387,7 +387,7 @@ fn ellipse_foot(a: f64, b: f64, q: Point) -> Point {
         let f = u * u + v * v - 1.0;
         let df = -2.0 * (u * u / (t + a2) + v * v / (t + b2));
         let step = -f / df;
-        if !(step > 0.0) || t + step == t {
+        if step.is_nan() || step <= 0.0 || t + step == t {
             break;
         }
         t += step;

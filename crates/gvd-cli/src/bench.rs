@@ -7,10 +7,46 @@ use std::time::Instant;
 /// Emiris, Mantzaflaris, Mourrain 2013, Table 1: seconds and boxes for random sites in
 /// [-2,2]², epsilon 0.001, maximum box size 0.05.
 const TABLE1: [(&str, [(f64, u64); 5]); 4] = [
-    ("Euclidean", [(0.87, 2008), (1.9, 2981), (3.9, 4210), (7.5, 5975), (13.9, 8222)]),
-    ("Anisotropic", [(1.1, 2213), (2.4, 3328), (4.2, 4364), (8.7, 6380), (16.1, 8702)]),
-    ("l4 metric", [(1.1, 2283), (2.1, 2965), (4.2, 4178), (7.8, 5866), (16.7, 8105)]),
-    ("l8 metric", [(1.1, 2050), (2.5, 2971), (4.9, 4298), (9.3, 5974), (19.4, 8037)]),
+    (
+        "Euclidean",
+        [
+            (0.87, 2008),
+            (1.9, 2981),
+            (3.9, 4210),
+            (7.5, 5975),
+            (13.9, 8222),
+        ],
+    ),
+    (
+        "Anisotropic",
+        [
+            (1.1, 2213),
+            (2.4, 3328),
+            (4.2, 4364),
+            (8.7, 6380),
+            (16.1, 8702),
+        ],
+    ),
+    (
+        "l4 metric",
+        [
+            (1.1, 2283),
+            (2.1, 2965),
+            (4.2, 4178),
+            (7.8, 5866),
+            (16.7, 8105),
+        ],
+    ),
+    (
+        "l8 metric",
+        [
+            (1.1, 2050),
+            (2.5, 2971),
+            (4.9, 4298),
+            (9.3, 5974),
+            (19.4, 8037),
+        ],
+    ),
 ];
 const SIZES: [usize; 5] = [50, 100, 200, 400, 800];
 
@@ -35,12 +71,19 @@ fn metric(kind: &str, rng: &mut Rng) -> Metric {
     match kind {
         "Anisotropic" => {
             // random SPD matrix: eigenvalues in [0.5, 2], random rotation
-            let (l1, l2, th) = (rng.range(0.5, 2.0), rng.range(0.5, 2.0), rng.range(0.0, 3.14159));
+            let (l1, l2, th) = (
+                rng.range(0.5, 2.0),
+                rng.range(0.5, 2.0),
+                rng.range(0.0, 3.14159),
+            );
             let (c, s) = (th.cos(), th.sin());
             let m00 = l1 * c * c + l2 * s * s;
             let m11 = l1 * s * s + l2 * c * c;
             let m01 = (l1 - l2) * c * s;
-            Metric::Anisotropic { matrix: [[m00, m01], [m01, m11]], weight: 0.0 }
+            Metric::Anisotropic {
+                matrix: [[m00, m01], [m01, m11]],
+                weight: 0.0,
+            }
         }
         "l4 metric" => Metric::Lp { p: 4 },
         "l8 metric" => Metric::Lp { p: 8 },
@@ -54,7 +97,13 @@ pub fn random_scene(kind: &str, n: usize, seed: u64) -> Scene {
     let sites = (0..n)
         .map(|_| {
             let at = Point::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
-            Site { id: None, kind: SiteKind::Point { at, metric: metric(kind, &mut rng) } }
+            Site {
+                id: None,
+                kind: SiteKind::Point {
+                    at,
+                    metric: metric(kind, &mut rng),
+                },
+            }
         })
         .collect();
     Scene {
@@ -79,7 +128,10 @@ fn time(scene: &Scene, options: &gvd::Options, repeat: usize) -> (f64, u64) {
 }
 
 pub fn emiris_table1(large: bool, repeat: usize) {
-    let one_core = gvd::Options { max_box: Some(0.05), parallel: false };
+    let one_core = gvd::Options {
+        max_box: Some(0.05),
+        parallel: false,
+    };
     println!("Emiris, Mantzaflaris, Mourrain 2013, Table 1: random sites in [-2,2]^2, epsilon 0.001, max box 0.05");
     println!("ours: one core, best of {repeat}; paper: their C++ implementation (2012 hardware)");
     println!(
@@ -106,15 +158,28 @@ pub fn emiris_table1(large: bool, repeat: usize) {
     }
     if large {
         let threads = rayon::current_num_threads();
-        let many = gvd::Options { max_box: Some(0.05), parallel: true };
+        let many = gvd::Options {
+            max_box: Some(0.05),
+            parallel: true,
+        };
         println!();
         println!("Euclidean, large n (epsilon 0.001, max box 0.05): one core vs {threads} threads");
-        println!("{:>7} | {:>9} {:>9} {:>8} | {:>8}", "n", "1 core s", "all s", "speed-up", "boxes");
+        println!(
+            "{:>7} | {:>9} {:>9} {:>8} | {:>8}",
+            "n", "1 core s", "all s", "speed-up", "boxes"
+        );
         for n in [10_000usize, 100_000] {
             let scene = random_scene("Euclidean", n, 7 + n as u64);
             let (t1, boxes) = time(&scene, &one_core, 1);
             let (tn, _) = time(&scene, &many, 1);
-            println!("{:>7} | {:>9.3} {:>9.3} {:>7.2}x | {:>8}", n, t1, tn, t1 / tn, boxes);
+            println!(
+                "{:>7} | {:>9.3} {:>9.3} {:>7.2}x | {:>8}",
+                n,
+                t1,
+                tn,
+                t1 / tn,
+                boxes
+            );
         }
     }
 }

@@ -9,7 +9,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "gvd", version, about = "Generalized Voronoi diagrams in the plane")]
+#[command(
+    name = "gvd",
+    version,
+    about = "Generalized Voronoi diagrams in the plane"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -73,12 +77,21 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Compute { scene, json, svg, boxes, max_box, threads } => {
+        Command::Compute {
+            scene,
+            json,
+            svg,
+            boxes,
+            max_box,
+            threads,
+        } => {
             if json.is_none() && svg.is_none() {
                 bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
             }
             if let Some(n) = threads {
-                rayon::ThreadPoolBuilder::new().num_threads(n.max(1)).build_global()?;
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n.max(1))
+                    .build_global()?;
             }
             let sc = read_scene(&scene)?;
             let options = gvd::Options {
@@ -95,7 +108,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 d.edges.len(),
                 stat(d, "boxes"),
                 stat(d, "uncertified_boxes"),
-                d.stats.get("seconds").and_then(|v| v.as_f64()).unwrap_or(0.0)
+                d.stats
+                    .get("seconds")
+                    .and_then(|v| v.as_f64())
+                    .unwrap_or(0.0)
             );
             if let Some(path) = json {
                 write_atomic(&path, &gvd::io::json::write_diagram(d))?;
@@ -109,21 +125,38 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             Ok(ExitCode::SUCCESS)
         }
-        Command::Verify { scene, diagram, grid, slack } => {
+        Command::Verify {
+            scene,
+            diagram,
+            grid,
+            slack,
+        } => {
             let sc = read_scene(&scene)?;
             let text = std::fs::read_to_string(&diagram)
                 .with_context(|| format!("cannot read {}", diagram.display()))?;
             let d: VoronoiComplex = gvd::io::json::read_diagram(&text)
                 .with_context(|| format!("{}", diagram.display()))?;
-            let opts = gvd::verify::VerifyOptions { grid, slack, ..Default::default() };
+            let opts = gvd::verify::VerifyOptions {
+                grid,
+                slack,
+                ..Default::default()
+            };
             let report = gvd::verify::verify(&sc, &d, &opts)?;
             for p in &report.problems {
                 println!("  {p}");
             }
             println!("{}", report.summary_line());
-            Ok(if report.passed { ExitCode::SUCCESS } else { ExitCode::from(1) })
+            Ok(if report.passed {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
         }
-        Command::Bench { table, large, repeat } => match table.as_str() {
+        Command::Bench {
+            table,
+            large,
+            repeat,
+        } => match table.as_str() {
             "emiris-table1" => {
                 bench::emiris_table1(large, repeat.max(1));
                 Ok(ExitCode::SUCCESS)
@@ -134,7 +167,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
 }
 
 fn stat(d: &VoronoiComplex, key: &str) -> String {
-    d.stats.get(key).map(|v| v.to_string()).unwrap_or_else(|| "-".into())
+    d.stats
+        .get(key)
+        .map(|v| v.to_string())
+        .unwrap_or_else(|| "-".into())
 }
 
 fn read_scene(path: &Path) -> Result<Scene> {
@@ -146,7 +182,10 @@ fn read_scene(path: &Path) -> Result<Scene> {
 /// Writes through a temporary file in the same directory and renames it into place, so
 /// that a failure never leaves a half-written output.
 fn write_atomic(path: &Path, contents: &str) -> Result<()> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     let name = path.file_name().context("output path has no file name")?;
     let tmp = dir.join(format!(".{}.tmp", name.to_string_lossy()));
     std::fs::write(&tmp, contents).with_context(|| format!("cannot write {}", tmp.display()))?;

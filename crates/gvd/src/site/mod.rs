@@ -131,19 +131,15 @@ impl DistanceField for SiteField {
     }
 
     fn split(&self, s: &FieldState, b: &Aabb, axis: Axis, at: f64) -> (FieldState, FieldState) {
-        match s {
-            FieldState::None => (FieldState::None, FieldState::None),
-            FieldState::Bernstein(bf) => {
-                let t = match axis {
-                    Axis::X => (at - b.min.x) / b.width(),
-                    Axis::Y => (at - b.min.y) / b.height(),
-                };
-                let (l, r) = bf.split(axis, t);
+        match (self, s) {
+            (SiteField::Polynomial(f), FieldState::Bernstein(bf)) => {
+                let (l, r) = f.split(bf, b, axis, at);
                 (
                     FieldState::Bernstein(Box::new(l)),
                     FieldState::Bernstein(Box::new(r)),
                 )
             }
+            _ => (FieldState::None, FieldState::None),
         }
     }
 

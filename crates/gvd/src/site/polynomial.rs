@@ -10,26 +10,40 @@ use crate::num::poly::Poly;
 use crate::num::Interval;
 use crate::scene::Metric;
 
-/// An explicit polynomial field `f(x, y)`, with its partial derivatives.
+/// An explicit polynomial field `f(x, y) = g(x − o.x, y − o.y)`, kept in coordinates
+/// local to an origin `o` (a point site's position), where its expansion is short and
+/// well conditioned: `(x − a)^8` stays one monomial instead of nine large ones.
 #[derive(Clone, Debug)]
 pub struct PolynomialField {
+    origin: Point,
     poly: Poly,
     dx: Poly,
     dy: Poly,
 }
 
 impl PolynomialField {
+    /// The field `poly(x, y)` in global coordinates.
     pub fn new(poly: Poly) -> Self {
+        PolynomialField::local(Point::new(0.0, 0.0), poly)
+    }
+
+    /// The field `poly(x − origin.x, y − origin.y)`.
+    pub fn local(origin: Point, poly: Poly) -> Self {
         let dx = poly.partial(0);
         let dy = poly.partial(1);
-        PolynomialField { poly, dx, dy }
+        PolynomialField {
+            origin,
+            poly,
+            dx,
+            dy,
+        }
     }
 
     /// The polynomial field of a point site under a non-Euclidean metric.
     pub fn from_metric(at: Point, metric: &Metric) -> Self {
-        // u = x − px, v = y − py as polynomials
-        let u = Poly::var(0).sub(&Poly::constant(at.x));
-        let v = Poly::var(1).sub(&Poly::constant(at.y));
+        // in local coordinates u = x − px, v = y − py
+        let u = Poly::var(0);
+        let v = Poly::var(1);
         let r2 = u.mul(&u).add(&v.mul(&v));
         let poly = match *metric {
             Metric::Euclidean => r2, // not used: Euclidean points have their own field
@@ -43,20 +57,51 @@ impl PolynomialField {
             Metric::Power { weight } => r2.sub(&Poly::constant(weight * weight)),
             Metric::Moebius { scale, weight } => r2.scale(scale).sub(&Poly::constant(weight)),
         };
-        PolynomialField::new(poly)
+        PolynomialField::local(at, poly)
     }
 
     /// The Bernstein form of the field over `b`.
     pub fn bernstein(&self, b: &Aabb) -> Bernstein2 {
-        Bernstein2::from_poly(&self.poly, b)
+        let local = Aabb::new(b.min - self.origin, b.max - self.origin);
+        Bernstein2::from_poly(&self.poly, &local)
+    }
+
+    /// The halves of a Bernstein form split by de Casteljau. The absolute error bound is
+    /// inherited from the parent; where it has grown large against the child's own
+    /// coefficient spread (fields that are tiny near their site, like `(x−a)^8`), the child
+    /// is converted afresh from the power basis over its own box.
+    pub fn split(
+        &self,
+        bf: &Bernstein2,
+        b: &Aabb,
+        axis: Axis,
+        at: f64,
+    ) -> (Bernstein2, Bernstein2) {
+        let t = match axis {
+            Axis::X => (at - b.min.x) / b.width(),
+            Axis::Y => (at - b.min.y) / b.height(),
+        };
+        let (l, r) = bf.split(axis, t);
+        let (lb, rb) = b.split(axis, at);
+        let refresh = |c: Bernstein2, cb: &Aabb| {
+            let spread = c.range().width();
+            if c.err > 1e-6 * spread {
+                self.bernstein(cb)
+            } else {
+                c
+            }
+        };
+        (refresh(l, &lb), refresh(r, &rb))
     }
 
     pub fn value(&self, q: Point) -> f64 {
-        self.poly.eval(q.x, q.y, 0.0)
+        let u = q - self.origin;
+        self.poly.eval(u.x, u.y, 0.0)
     }
 
     pub fn gradient(&self, q: Point) -> Point {
-        Point::new(self.dx.eval(q.x, q.y, 0.0), self.dy.eval(q.x, q.y, 0.0))
+        let u = q - self.origin;
+        Point::new(self.dx.eval(u.x, u.y, 0.0), self.dy.eval(u.x, u.y, 0.0))
     }
 }
 

@@ -105,7 +105,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
         if labels_known {
             match filter::certify(self.fields, &b, &active) {
                 Certificate::Monotone { over_y } => {
-                    self.join_monotone(&ports, over_y, out);
+                    self.join_monotone(&b, &ports, over_y, out);
                     return;
                 }
                 Certificate::SingleVertex if self.try_vertex(&b, &active, &ports, out) => return,
@@ -135,7 +135,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
 
     /// Two sites with a monotone bisector: its arcs are graphs over one axis with disjoint
     /// ranges, so the ports sorted along that axis pair up consecutively.
-    fn join_monotone(&self, ports: &[Port], over_y: bool, out: &mut LeafOutput) {
+    fn join_monotone(&self, b: &Aabb, ports: &[Port], over_y: bool, out: &mut LeafOutput) {
         let mut sorted: Vec<&Port> = ports.iter().collect();
         sorted.sort_by(|p, q| {
             let (a, b) = if over_y {
@@ -147,7 +147,22 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
         });
         for pq in sorted.chunks(2) {
             if let [p, q] = pq {
-                self.piece(p.pair, End::Port(p.id), p.at, End::Port(q.id), q.at, out);
+                let pair = ordered(p.pair);
+                let points = trace::trace_graph(
+                    self.fields,
+                    pair[0],
+                    pair[1],
+                    p.at,
+                    q.at,
+                    over_y,
+                    b,
+                    self.tol.trace,
+                );
+                out.pieces.push(Piece {
+                    pair,
+                    ends: [End::Port(p.id), End::Port(q.id)],
+                    points,
+                });
             }
         }
     }
@@ -175,7 +190,27 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                 sites: sorted3(s),
             });
             for p in ports {
-                self.piece(p.pair, End::Port(p.id), p.at, End::Vertex(vi), v, out);
+                let pair = ordered(p.pair);
+                let i = |x: u32| active.iter().position(|a| a.0 == x).unwrap_or(0);
+                let pb = filter::pair(self.fields, active, i(pair[0]), i(pair[1]), b);
+                let points = match filter::monotone(&pb) {
+                    Some(over_y) => trace::trace_graph(
+                        self.fields,
+                        pair[0],
+                        pair[1],
+                        p.at,
+                        v,
+                        over_y,
+                        b,
+                        self.tol.trace,
+                    ),
+                    None => trace::trace(self.fields, pair[0], pair[1], p.at, v, self.tol.trace),
+                };
+                out.pieces.push(Piece {
+                    pair,
+                    ends: [End::Port(p.id), End::Vertex(vi)],
+                    points,
+                });
             }
             return true;
         }
@@ -197,7 +232,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                 .filter(|p| same_pair(p.pair, x, y))
                 .copied()
                 .collect();
-            self.join_monotone(&mine, over_y, out);
+            self.join_monotone(b, &mine, over_y, out);
         }
         true
     }
@@ -283,16 +318,6 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                 points: vec![p.at, q.at],
             });
         }
-    }
-
-    fn piece(&self, pair: [u32; 2], e0: End, p: Point, e1: End, q: Point, out: &mut LeafOutput) {
-        let pair = ordered(pair);
-        let points = trace::trace(self.fields, pair[0], pair[1], p, q, self.tol.trace);
-        out.pieces.push(Piece {
-            pair,
-            ends: [e0, e1],
-            points,
-        });
     }
 }
 

@@ -85,7 +85,7 @@ fn chord<F: DistanceField>(
         return;
     }
     let n = d.perp() * (1.0 / len);
-    let reach = 0.5 * len;
+    let reach = len;
     let mid = project(fields, a, b, p.lerp(q, 0.5), n, reach);
     let Some(m) = mid else {
         out.push(q);
@@ -133,4 +133,113 @@ pub fn vertex<F: DistanceField>(fields: &[F], s: [u32; 3], bx: &Aabb) -> Option<
         }
     }
     (converged && bx.contains(q)).then_some(q)
+}
+
+/// A polyline from `p` to `q` along a bisector that is a graph over one axis in `bx`
+/// (`over_y`: `x = g(y)`; else `y = g(x)`), certified by a gradient component that never
+/// vanishes. Each point is the unique root of `f_a − f_b` on the box's cross-section,
+/// found by bisection; the parameter interval is halved until chords stay within `tol`.
+#[allow(clippy::too_many_arguments)]
+pub fn trace_graph<F: DistanceField>(
+    fields: &[F],
+    a: u32,
+    b: u32,
+    p: Point,
+    q: Point,
+    over_y: bool,
+    bx: &Aabb,
+    tol: f64,
+) -> Vec<Point> {
+    let mut out = vec![p];
+    graph_chord(fields, (a, b), p, q, over_y, bx, tol, 0, &mut out);
+    out
+}
+
+#[allow(clippy::too_many_arguments)]
+fn graph_chord<F: DistanceField>(
+    fields: &[F],
+    ab: (u32, u32),
+    p: Point,
+    q: Point,
+    over_y: bool,
+    bx: &Aabb,
+    tol: f64,
+    depth: u32,
+    out: &mut Vec<Point>,
+) {
+    let param = |r: Point| if over_y { r.y } else { r.x };
+    if (param(q) - param(p)).abs() <= tol || depth >= 30 {
+        out.push(q);
+        return;
+    }
+    let t = 0.5 * (param(p) + param(q));
+    let Some(m) = cross_section_root(fields, ab, t, over_y, bx) else {
+        out.push(q);
+        return;
+    };
+    let chord_mid = p.lerp(q, 0.5);
+    let off = {
+        let d = q - p;
+        let len = d.norm();
+        if len == 0.0 {
+            m.dist(p)
+        } else {
+            ((m - p).cross(d) / len).abs()
+        }
+    };
+    if off <= tol && m.dist(chord_mid) <= 4.0 * tol && depth >= 1 {
+        out.push(q);
+        return;
+    }
+    graph_chord(fields, ab, p, m, over_y, bx, tol, depth + 1, out);
+    graph_chord(fields, ab, m, q, over_y, bx, tol, depth + 1, out);
+}
+
+/// The root of `f_a − f_b` on the line `y = t` (`over_y`) or `x = t` across the box.
+fn cross_section_root<F: DistanceField>(
+    fields: &[F],
+    (a, b): (u32, u32),
+    t: f64,
+    over_y: bool,
+    bx: &Aabb,
+) -> Option<Point> {
+    let at = |s: f64| {
+        if over_y {
+            Point::new(s, t)
+        } else {
+            Point::new(t, s)
+        }
+    };
+    let (mut lo, mut hi) = if over_y {
+        (bx.min.x, bx.max.x)
+    } else {
+        (bx.min.y, bx.max.y)
+    };
+    let h_lo = diff(fields, a, b, at(lo));
+    let h_hi = diff(fields, a, b, at(hi));
+    if h_lo == 0.0 {
+        return Some(at(lo));
+    }
+    if h_hi == 0.0 {
+        return Some(at(hi));
+    }
+    if (h_lo > 0.0) == (h_hi > 0.0) {
+        return None;
+    }
+    for _ in 0..64 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let h = diff(fields, a, b, at(mid));
+        if h == 0.0 {
+            return Some(at(mid));
+        }
+        if (h > 0.0) == (h_lo > 0.0) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(at(0.5 * (lo + hi)))
 }

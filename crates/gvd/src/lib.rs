@@ -13,6 +13,7 @@ pub mod complex;
 mod compute;
 pub mod error;
 pub mod geom;
+pub mod incremental;
 pub mod io;
 pub mod num;
 pub mod scene;

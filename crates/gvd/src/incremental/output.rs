@@ -1,0 +1,193 @@
+//! From the half-edge graph to the clipped [`VoronoiComplex`].
+
+use super::graph::GHOST;
+use super::predicates::{circumcenter, incircle};
+use super::PointDiagram;
+use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
+use crate::geom::{Aabb, Point};
+
+/// Union–find with path halving.
+fn find(parent: &mut [u32], mut v: u32) -> u32 {
+    while parent[v as usize] != v {
+        let g = parent[parent[v as usize] as usize];
+        parent[v as usize] = g;
+        v = g;
+    }
+    v
+}
+
+/// Liang–Barsky on a whole line: the range of `s` for which `m + s·dir` lies in `b`.
+fn line_range(m: Point, dir: Point, b: &Aabb) -> Option<(f64, f64)> {
+    let (mut s0, mut s1) = (f64::NEG_INFINITY, f64::INFINITY);
+    for (den, num) in [
+        (-dir.x, m.x - b.min.x),
+        (dir.x, b.max.x - m.x),
+        (-dir.y, m.y - b.min.y),
+        (dir.y, b.max.y - m.y),
+    ] {
+        if den == 0.0 {
+            if num < 0.0 {
+                return None;
+            }
+        } else if den < 0.0 {
+            s0 = s0.max(num / den);
+        } else {
+            s1 = s1.min(num / den);
+        }
+    }
+    (s0 <= s1).then_some((s0, s1))
+}
+
+/// `p` moved into `b` (removes the rounding of a computed boundary point).
+fn clamp(p: Point, b: &Aabb) -> Point {
+    Point::new(p.x.clamp(b.min.x, b.max.x), p.y.clamp(b.min.y, b.max.y))
+}
+
+pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
+    let g = &d.graph;
+    let n = d.input.len() as u32;
+    let nv = g.gens.len();
+    let pos = |s: u32| d.pts[s as usize];
+    let real = |v: usize| v != GHOST as usize && g.gens[v].iter().all(|&s| s < n);
+
+    // Circumcentres (scaled coordinates); the vertex at infinity gets a dummy.
+    let at: Vec<Point> = (0..nv)
+        .map(|v| {
+            let [a, b, c] = g.gens[v];
+            if v == GHOST as usize {
+                Point::default()
+            } else {
+                circumcenter(pos(a), pos(b), pos(c))
+            }
+        })
+        .collect();
+
+    // Merge vertices joined by zero-length edges: exactly cocircular generators. A
+    // vertex with a far generator lies outside the domain, so only real ones matter.
+    let mut parent: Vec<u32> = (0..nv as u32).collect();
+    let mut merged = false;
+    for (h, &t) in g.twin.iter().enumerate() {
+        let (u, w) = (h / 3, t as usize / 3);
+        if (h as u32) < t && real(u) && real(w) {
+            let [a, b, c] = g.gens[u];
+            let x = g.gens[w][(t as usize % 3 + 2) % 3];
+            if incircle(pos(a), pos(b), pos(c), pos(x)) == 0.0 {
+                let (ru, rw) = (find(&mut parent, u as u32), find(&mut parent, w as u32));
+                parent[ru.max(rw) as usize] = ru.min(rw);
+                merged = true;
+            }
+        }
+    }
+    if merged {
+        for v in 0..nv as u32 {
+            let r = find(&mut parent, v);
+            parent[v as usize] = r;
+        }
+    }
+
+    // Output vertices: the groups whose representative lies in the closed domain.
+    let inv = 1.0 / d.scale;
+    let site = |s: u32| Generator::Site(d.input[s as usize] as usize);
+    let mut index = vec![u32::MAX; nv];
+    let mut vertices = Vec::new();
+    for v in 0..nv {
+        if parent[v] as usize == v && real(v) && d.domain.contains(at[v]) {
+            index[v] = vertices.len() as u32;
+            let mut sites: Vec<Generator> = g.gens[v].iter().map(|&s| site(s)).collect();
+            sites.sort_unstable();
+            vertices.push(Vertex {
+                at: at[v] * inv,
+                sites,
+            });
+        }
+    }
+    if merged {
+        for (v, &r) in parent.iter().enumerate() {
+            let r = r as usize;
+            if r != v && index[r] != u32::MAX {
+                let sites = &mut vertices[index[r] as usize].sites;
+                sites.extend(g.gens[v].iter().map(|&s| site(s)));
+            }
+        }
+        for v in vertices.iter_mut() {
+            v.sites.sort_unstable();
+            v.sites.dedup();
+        }
+    }
+
+    // Edges between real sites, between distinct groups, clipped to the domain.
+    let mut edges = Vec::new();
+    for (h, &t) in g.twin.iter().enumerate() {
+        if (h as u32) > t {
+            continue;
+        }
+        let (a, b) = (g.right(h as u32), g.left(h as u32));
+        if a >= n || b >= n {
+            continue;
+        }
+        let (ru, rw) = (parent[h / 3] as usize, parent[t as usize / 3] as usize);
+        if ru == rw {
+            continue;
+        }
+        let (iu, iw) = (index[ru], index[rw]);
+        let (from, to) = (
+            (iu != u32::MAX).then_some(iu as usize),
+            (iw != u32::MAX).then_some(iw as usize),
+        );
+        let (start, end) = if from.is_some() && to.is_some() {
+            (at[ru], at[rw])
+        } else {
+            // Clip on the bisector m + s·dir, dir = (a − b)⊥ (from u to w, b on the left):
+            // parameters stay accurate when a vertex is very far away.
+            let (pa, pb) = (pos(a), pos(b));
+            let (m, dir) = (pa.lerp(pb, 0.5), (pa - pb).perp());
+            let param = |v: usize| (at[v] - m).dot(dir) / dir.dot(dir);
+            let Some((s0, s1)) = line_range(m, dir, &d.domain) else {
+                continue;
+            };
+            let lo = if from.is_some() {
+                param(ru)
+            } else {
+                param(ru).max(s0)
+            };
+            let hi = if to.is_some() {
+                param(rw)
+            } else {
+                param(rw).min(s1)
+            };
+            if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
+                continue;
+            }
+            let on_line = |s: f64| clamp(m + dir * s, &d.domain);
+            (
+                if from.is_some() { at[ru] } else { on_line(lo) },
+                if to.is_some() { at[rw] } else { on_line(hi) },
+            )
+        };
+        edges.push(Edge {
+            sites: [site(b), site(a)],
+            from,
+            to,
+            points: vec![start * inv, end * inv],
+        });
+    }
+
+    let mut c = VoronoiComplex {
+        vertices,
+        edges,
+        ..Default::default()
+    };
+    let stat = |v: usize| serde_json::Value::from(v);
+    c.stats.insert("sites".into(), stat(d.input.len()));
+    c.stats
+        .insert("duplicate_sites".into(), stat(d.duplicates.len()));
+    c.stats
+        .insert("skipped_sites".into(), stat(d.skipped.len()));
+    c.stats
+        .insert("topology_overrides".into(), stat(d.overrides));
+    c.stats
+        .insert("seed_fallbacks".into(), stat(d.seed_fallbacks));
+    c.stats.insert("vertices".into(), stat(c.vertices.len()));
+    c.stats.insert("edges".into(), stat(c.edges.len()));
+    c
+}

@@ -287,6 +287,23 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
         labels.sort_unstable();
         labels.dedup();
         let c = b.center();
+        let mut cyc: Vec<&Port> = ports.iter().collect();
+        cyc.sort_by(|p, q| perimeter(&b, p.at).total_cmp(&perimeter(&b, q.at)));
+        if labels.len() >= 3 {
+            // bisectors that only pass through (a cell thinner than the box between two
+            // others) pair up without crossing; a vertex is needed only when they cannot
+            if let Some(matching) = noncrossing_matching(&cyc) {
+                for (i, j) in matching {
+                    let (p, q) = (cyc[i], cyc[j]);
+                    out.pieces.push(Piece {
+                        pair: ordered(p.pair),
+                        ends: [End::Port(p.id), End::Port(q.id)],
+                        points: vec![p.at, q.at],
+                    });
+                }
+                return;
+            }
+        }
         if labels.len() >= 3 || ports.len() % 2 == 1 {
             let vi = out.vertices.len() as u32;
             out.vertices.push(FoundVertex {
@@ -302,8 +319,6 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
             }
             return;
         }
-        let mut cyc: Vec<&Port> = ports.iter().collect();
-        cyc.sort_by(|p, q| perimeter(&b, p.at).total_cmp(&perimeter(&b, q.at)));
         let centre = label(self.fields, sites, c);
         // the arc after cyc[0] (towards cyc[1]) has label `after`: pairing (0,1),(2,3)...
         // cuts those arcs off from the centre, so they must not carry the centre's label
@@ -319,6 +334,30 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
             });
         }
     }
+}
+
+/// Pairs ports of the same bisector that are adjacent in the cyclic order, repeatedly
+/// (cancellation of equal neighbours in a cyclic word); the pairs found this way never
+/// cross. `None` when some port is left over.
+fn noncrossing_matching(cyc: &[&Port]) -> Option<Vec<(usize, usize)>> {
+    let mut stack: Vec<usize> = Vec::new();
+    let mut pairs = Vec::new();
+    let key = |k: usize| ordered(cyc[k].pair);
+    for k in 0..cyc.len() {
+        match stack.last() {
+            Some(&t) if key(t) == key(k) => {
+                stack.pop();
+                pairs.push((t, k));
+            }
+            _ => stack.push(k),
+        }
+    }
+    // what is left may still cancel across the wrap-around
+    while stack.len() >= 2 && key(stack[0]) == key(stack[stack.len() - 1]) {
+        let (first, last) = (stack.remove(0), stack.pop().unwrap_or(0));
+        pairs.push((first, last));
+    }
+    stack.is_empty().then_some(pairs)
 }
 
 fn same_pair(p: [u32; 2], x: u32, y: u32) -> bool {

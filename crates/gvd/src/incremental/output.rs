@@ -43,6 +43,15 @@ fn clamp(p: Point, b: &Aabb) -> Point {
     Point::new(p.x.clamp(b.min.x, b.max.x), p.y.clamp(b.min.y, b.max.y))
 }
 
+/// What the edge pass needs of a vertex, packed so that the random access to an
+/// edge's far end costs one cache miss: its group's position, group and output index.
+#[derive(Clone, Copy)]
+struct Node {
+    at: Point,
+    group: u32,
+    out: u32,
+}
+
 pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
     let g = &d.graph;
     let n = d.input.len() as u32;
@@ -51,62 +60,76 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
     let real = |v: usize| v != GHOST as usize && g.gens[v].iter().all(|&s| s < n);
 
     // Circumcentres (scaled coordinates); the vertex at infinity gets a dummy.
-    let at: Vec<Point> = (0..nv)
+    let mut nodes: Vec<Node> = (0..nv)
         .map(|v| {
             let [a, b, c] = g.gens[v];
-            if v == GHOST as usize {
+            let at = if v == GHOST as usize {
                 Point::default()
             } else {
                 circumcenter(pos(a), pos(b), pos(c))
+            };
+            Node {
+                at,
+                group: v as u32,
+                out: u32::MAX,
             }
         })
         .collect();
 
     // Merge vertices joined by zero-length edges: exactly cocircular generators. A
     // vertex with a far generator lies outside the domain, so only real ones matter.
-    let mut parent: Vec<u32> = (0..nv as u32).collect();
-    let mut merged = false;
+    let mut parent: Vec<u32> = Vec::new();
     for (h, &t) in g.twin.iter().enumerate() {
         let (u, w) = (h / 3, t as usize / 3);
         if (h as u32) < t && real(u) && real(w) {
             let [a, b, c] = g.gens[u];
             let x = g.gens[w][(t as usize % 3 + 2) % 3];
             if incircle(pos(a), pos(b), pos(c), pos(x)) == 0.0 {
+                if parent.is_empty() {
+                    parent = (0..nv as u32).collect();
+                }
                 let (ru, rw) = (find(&mut parent, u as u32), find(&mut parent, w as u32));
                 parent[ru.max(rw) as usize] = ru.min(rw);
-                merged = true;
             }
         }
     }
-    if merged {
-        for v in 0..nv as u32 {
-            let r = find(&mut parent, v);
-            parent[v as usize] = r;
-        }
-    }
+    let merged = !parent.is_empty();
 
     // Output vertices: the groups whose representative lies in the closed domain.
     let inv = 1.0 / d.scale;
     let site = |s: u32| Generator::Site(d.input[s as usize] as usize);
-    let mut index = vec![u32::MAX; nv];
-    let mut vertices = Vec::new();
+    let mut vertices = Vec::with_capacity(nv);
     for v in 0..nv {
-        if parent[v] as usize == v && real(v) && d.domain.contains(at[v]) {
-            index[v] = vertices.len() as u32;
-            let mut sites: Vec<Generator> = g.gens[v].iter().map(|&s| site(s)).collect();
-            sites.sort_unstable();
+        let rep = if merged {
+            let r = find(&mut parent, v as u32);
+            parent[v] = r; // full compression: the root is the group's least vertex
+            r as usize
+        } else {
+            v
+        };
+        if rep == v && real(v) && d.domain.contains(nodes[v].at) {
+            nodes[v].out = vertices.len() as u32;
+            let mut ids = g.gens[v].map(|s| d.input[s as usize]);
+            ids.sort_unstable();
+            let sites = ids.iter().map(|&i| Generator::Site(i as usize)).collect();
             vertices.push(Vertex {
-                at: at[v] * inv,
+                at: nodes[v].at * inv,
                 sites,
             });
         }
     }
     if merged {
-        for (v, &r) in parent.iter().enumerate() {
-            let r = r as usize;
-            if r != v && index[r] != u32::MAX {
-                let sites = &mut vertices[index[r] as usize].sites;
-                sites.extend(g.gens[v].iter().map(|&s| site(s)));
+        for v in 0..nv {
+            let r = parent[v] as usize;
+            if r != v {
+                nodes[v] = Node {
+                    group: r as u32,
+                    ..nodes[r]
+                };
+                if nodes[r].out != u32::MAX {
+                    let sites = &mut vertices[nodes[r].out as usize].sites;
+                    sites.extend(g.gens[v].iter().map(|&s| site(s)));
+                }
             }
         }
         for v in vertices.iter_mut() {
@@ -116,7 +139,7 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
     }
 
     // Edges between real sites, between distinct groups, clipped to the domain.
-    let mut edges = Vec::new();
+    let mut edges = Vec::with_capacity(g.twin.len() / 2);
     for (h, &t) in g.twin.iter().enumerate() {
         if (h as u32) > t {
             continue;
@@ -125,43 +148,42 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
         if a >= n || b >= n {
             continue;
         }
-        let (ru, rw) = (parent[h / 3] as usize, parent[t as usize / 3] as usize);
-        if ru == rw {
+        let (nu, nw) = (nodes[h / 3], nodes[t as usize / 3]);
+        if nu.group == nw.group {
             continue;
         }
-        let (iu, iw) = (index[ru], index[rw]);
         let (from, to) = (
-            (iu != u32::MAX).then_some(iu as usize),
-            (iw != u32::MAX).then_some(iw as usize),
+            (nu.out != u32::MAX).then_some(nu.out as usize),
+            (nw.out != u32::MAX).then_some(nw.out as usize),
         );
         let (start, end) = if from.is_some() && to.is_some() {
-            (at[ru], at[rw])
+            (nu.at, nw.at)
         } else {
             // Clip on the bisector m + s·dir, dir = (a − b)⊥ (from u to w, b on the left):
             // parameters stay accurate when a vertex is very far away.
             let (pa, pb) = (pos(a), pos(b));
             let (m, dir) = (pa.lerp(pb, 0.5), (pa - pb).perp());
-            let param = |v: usize| (at[v] - m).dot(dir) / dir.dot(dir);
+            let param = |p: Point| (p - m).dot(dir) / dir.dot(dir);
             let Some((s0, s1)) = line_range(m, dir, &d.domain) else {
                 continue;
             };
             let lo = if from.is_some() {
-                param(ru)
+                param(nu.at)
             } else {
-                param(ru).max(s0)
+                param(nu.at).max(s0)
             };
             let hi = if to.is_some() {
-                param(rw)
+                param(nw.at)
             } else {
-                param(rw).min(s1)
+                param(nw.at).min(s1)
             };
             if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
                 continue;
             }
             let on_line = |s: f64| clamp(m + dir * s, &d.domain);
             (
-                if from.is_some() { at[ru] } else { on_line(lo) },
-                if to.is_some() { at[rw] } else { on_line(hi) },
+                if from.is_some() { nu.at } else { on_line(lo) },
+                if to.is_some() { nw.at } else { on_line(hi) },
             )
         };
         edges.push(Edge {

@@ -31,14 +31,20 @@ pub(crate) fn power_estimate(a: Point, b: Point, c: Point, d: Point) -> f64 {
     -det / o
 }
 
-/// `u × v` to within a few ulps (Kahan's 2×2 determinant with fused multiply-adds).
+/// `u × v` to within a few ulps: the plain difference of products when it cancels
+/// little (`|u × v| ≥ (|u_x v_y| + |u_y v_x|) / 16`, so its relative error is below
+/// 2^-48), else Kahan's 2×2 determinant with fused multiply-adds.
 #[inline]
 fn cross_accurate(u: Point, v: Point) -> f64 {
     let p = u.x * v.y;
-    let e = u.x.mul_add(v.y, -p);
     let q = u.y * v.x;
+    let d = p - q;
+    if d.abs() * 16.0 >= p.abs() + q.abs() {
+        return d;
+    }
+    let e = u.x.mul_add(v.y, -p);
     let f = u.y.mul_add(v.x, -q);
-    (p - q) + (e - f)
+    d + (e - f)
 }
 
 /// The circumcentre of the counter-clockwise triangle `a, b, c`, computed relative to

@@ -16,7 +16,7 @@
 //! `[0, t]` and `[t, 1]` of the parent's relative coordinate at the f64 value `t`.
 
 use crate::geom::{Aabb, Axis};
-use crate::num::interval::round_up;
+use crate::num::interval::{round_down, round_up};
 use crate::num::poly::Poly;
 use crate::num::Interval;
 
@@ -102,6 +102,41 @@ fn binomials(n: usize) -> Vec<f64> {
         }
     }
     row
+}
+
+/// For `i ≤ d`: the Bernstein coefficients of degree `d` over `[a, b]` of `x^i` (row `i`
+/// of the first table) and the sums of the absolute values of their summands (second).
+fn monomial_table(d: usize, a: f64, b: f64) -> (Vec<f64>, Vec<f64>) {
+    let n = d + 1;
+    let pow = |x: f64| {
+        let mut v = vec![1.0; n];
+        for k in 1..n {
+            v[k] = v[k - 1] * x;
+        }
+        v
+    };
+    let (pa, pb) = (pow(a), pow(b));
+    let rows: Vec<Vec<f64>> = (0..=d).map(binomials).collect();
+    let choose = |r: usize, k: usize| if k > r { 0.0 } else { rows[r][k] };
+    let mut value = vec![0.0; n * n];
+    let mut magnitude = vec![0.0; n * n];
+    for i in 0..n {
+        for k in 0..n {
+            let (mut v, mut m) = (0.0, 0.0);
+            for t in 0..=i.min(k) {
+                if i - t > d - k {
+                    continue;
+                }
+                let w = choose(k, t) * choose(d - k, i - t) * pa[i - t] * pb[t];
+                v += w;
+                m += w.abs();
+            }
+            let c = choose(d, i);
+            value[i * n + k] = v / c;
+            magnitude[i * n + k] = m / c;
+        }
+    }
+    (value, magnitude)
 }
 
 /// `min b − err`, `max b + err`, outward-rounded; the whole line if anything is NaN/∞.
@@ -566,8 +601,102 @@ impl Bernstein2 {
     /// The Bernstein form of `p(x, y)` over `b` (terms containing `z` are dropped, i.e.
     /// `z = 0`), degrees `(deg_x p, deg_y p)`.
     pub fn from_poly(p: &Poly, b: &Aabb) -> Self {
+        let deg = [p.degree_in(0) as usize, p.degree_in(1) as usize];
+        let terms = p.terms.iter().filter(|(e, _)| e[2] == 0).count();
+        if terms * 4 <= (deg[0] + 1) * (deg[1] + 1) {
+            return Self::from_sparse(p, b, deg);
+        }
         let (deg, pow) = power_tensor(p, 2);
         Self::from_form(from_power(deg, &pow, [b.x(), b.y(), Interval::point(0.0)]))
+    }
+
+    /// Enclosures of `h = self − o` and of its two partial derivatives with respect to the
+    /// relative coordinates, computed coefficient by coefficient without forming `h`
+    /// (both forms must be over the same box; unequal degrees go through [`Self::sub`]).
+    pub fn difference_bounds(&self, o: &Self) -> (Interval, [Interval; 2]) {
+        if self.deg != o.deg {
+            let h = self.sub(o);
+            return (
+                h.range(),
+                [h.derivative(Axis::X).range(), h.derivative(Axis::Y).range()],
+            );
+        }
+        let [dx, dy] = self.deg;
+        let ny = dy + 1;
+        let h = |k: usize| self.coef[k] - o.coef[k];
+        let m = max_abs(&self.coef) + max_abs(&o.coef);
+        let err = round_up(self.err + o.err + EPS * m + TINY);
+        let mut value = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut grad = [(f64::INFINITY, f64::NEG_INFINITY); 2];
+        let mut nan = false;
+        for i in 0..=dx {
+            for j in 0..=dy {
+                let v = h(i * ny + j);
+                nan |= v.is_nan();
+                value = (value.0.min(v), value.1.max(v));
+                if i < dx {
+                    let d = dx as f64 * (h((i + 1) * ny + j) - v);
+                    grad[0] = (grad[0].0.min(d), grad[0].1.max(d));
+                }
+                if j < dy {
+                    let d = dy as f64 * (h(i * ny + j + 1) - v);
+                    grad[1] = (grad[1].0.min(d), grad[1].1.max(d));
+                }
+            }
+        }
+        let whole = Interval::new(f64::NEG_INFINITY, f64::INFINITY);
+        if nan || !err.is_finite() {
+            return (whole, [whole, whole]);
+        }
+        let widen = |(lo, hi): (f64, f64), e: f64| {
+            if lo > hi {
+                Interval::point(0.0) // degree 0 along this axis: the derivative is 0
+            } else {
+                Interval::new(round_down(lo - e), round_up(hi + e))
+            }
+        };
+        // a derivative coefficient n·(h_{i+1} − h_i) is within 2n·err plus its rounding
+        let derr =
+            |n: usize| round_up(2.0 * n as f64 * err + 4.0 * n as f64 * EPS * (m + err) + TINY);
+        (
+            widen(value, err),
+            [widen(grad[0], derr(dx)), widen(grad[1], derr(dy))],
+        )
+    }
+
+    /// The conversion of a sparse polynomial by blossoming: over `[a, b]` at degree `d`,
+    /// the k-th Bernstein coefficient of `x^i` is its blossom at (a^(d−k), b^k),
+    /// `Σ_m C(k,m) C(d−k,i−m) a^(i−m) b^m / C(d,i)`; a tensor coefficient is the sum over
+    /// the terms of `c · β_i[k] · γ_j[l]`. The error bound counts every rounding against
+    /// the sum of the absolute values of the summands.
+    fn from_sparse(p: &Poly, b: &Aabb, deg: [usize; 2]) -> Self {
+        let ux = monomial_table(deg[0], b.min.x, b.max.x);
+        let uy = monomial_table(deg[1], b.min.y, b.max.y);
+        let (nx, ny) = (deg[0] + 1, deg[1] + 1);
+        let mut coef = vec![0.0; nx * ny];
+        let mut magnitude = vec![0.0f64; nx * ny];
+        for &(e, c) in p.terms.iter().filter(|(e, _)| e[2] == 0) {
+            let (i, j) = (e[0] as usize, e[1] as usize);
+            for k in 0..nx {
+                let (bx, mx) = (ux.0[i * nx + k], ux.1[i * nx + k]);
+                for l in 0..ny {
+                    let (by, my) = (uy.0[j * ny + l], uy.1[j * ny + l]);
+                    coef[k * ny + l] += c * bx * by;
+                    magnitude[k * ny + l] += c.abs() * mx * my;
+                }
+            }
+        }
+        let rounding = (4 * (deg[0] + deg[1]) + 16 + 2 * p.terms.len()) as f64 * EPS;
+        let worst = magnitude.iter().fold(0.0f64, |m, &x| m.max(x));
+        let err = round_up(worst * rounding + TINY);
+        if !err.is_finite() || coef.iter().any(|c| !c.is_finite()) {
+            return Bernstein2 {
+                deg,
+                coef,
+                err: f64::INFINITY,
+            };
+        }
+        Bernstein2 { deg, coef, err }
     }
 
     /// de Casteljau along `axis` at relative `t ∈ [0,1]`: the lower and upper parts.
@@ -754,6 +883,41 @@ mod tests {
                     .collect(),
             )
         })
+    }
+
+    proptest! {
+        #[test]
+        fn sparse_and_dense_conversions_agree(p in poly_strategy(2, 8), x0 in -3.0..3.0f64, y0 in -3.0..3.0f64,
+                                             w in 0.001..2.0f64, h in 0.001..2.0f64) {
+            let b = Aabb::new(Point::new(x0, y0), Point::new(x0 + w, y0 + h));
+            let deg = [p.degree_in(0) as usize, p.degree_in(1) as usize];
+            let sparse = Bernstein2::from_sparse(&p, &b, deg);
+            let (d, pow) = power_tensor(&p, 2);
+            let dense = Bernstein2::from_form(from_power(d, &pow, [b.x(), b.y(), Interval::point(0.0)]));
+            prop_assert_eq!(sparse.deg, dense.deg);
+            for (s, t) in sparse.coef.iter().zip(&dense.coef) {
+                prop_assert!((s - t).abs() <= sparse.err + dense.err, "{} vs {}", s, t);
+            }
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn difference_bounds_match_the_formed_difference(p in poly_strategy(2, 6), q in poly_strategy(2, 6), x0 in -3.0..3.0f64, y0 in -3.0..3.0f64,
+                                                          w in 0.001..2.0f64, h in 0.001..2.0f64, u in 0.0..=1.0f64, v in 0.0..=1.0f64) {
+            let b = Aabb::new(Point::new(x0, y0), Point::new(x0 + w, y0 + h));
+            let (fp, fq) = (Bernstein2::from_poly(&p, &b), Bernstein2::from_poly(&q, &b));
+            let (value, grad) = fp.difference_bounds(&fq);
+            let at = b.at(u, v);
+            let exact = p.eval(at.x, at.y, 0.0) - q.eval(at.x, at.y, 0.0);
+            let slack = 1e-9 * (1.0 + exact.abs());
+            prop_assert!(value.lo - slack <= exact && exact <= value.hi + slack);
+            let d = p.sub(&q);
+            let gx = d.partial(0).eval(at.x, at.y, 0.0) * w;
+            let gy = d.partial(1).eval(at.x, at.y, 0.0) * h;
+            prop_assert!(grad[0].lo - 1e-9 * (1.0 + gx.abs()) <= gx && gx <= grad[0].hi + 1e-9 * (1.0 + gx.abs()));
+            prop_assert!(grad[1].lo - 1e-9 * (1.0 + gy.abs()) <= gy && gy <= grad[1].hi + 1e-9 * (1.0 + gy.abs()));
+        }
     }
 
     /// A relative coordinate, often exactly at a side (where values equal coefficients).

@@ -123,9 +123,16 @@ pub(super) fn gradient_bound(bf: &Bernstein2, b: &Aabb) -> [Interval; 2] {
 /// ranges, since the common leading terms cancel (the difference of two quadrics with
 /// equal quadratic parts is linear).
 pub(super) fn pair(fa: &Bernstein2, fb: &Bernstein2, b: &Aabb) -> PairBound {
-    let h = fa.sub(fb);
+    let (value, [gx, gy]) = fa.difference_bounds(fb);
+    let per_unit = |g: Interval, len: f64| {
+        if len > 0.0 {
+            g.scale(1.0 / len)
+        } else {
+            Interval::new(f64::NEG_INFINITY, f64::INFINITY)
+        }
+    };
     PairBound {
-        value: h.range(),
-        gradient: Some(gradient_bound(&h, b)),
+        value,
+        gradient: Some([per_unit(gx, b.width()), per_unit(gy, b.height())]),
     }
 }

@@ -12,6 +12,7 @@ mod tree;
 use crate::complex::VoronoiComplex;
 use crate::geom::Aabb;
 use crate::site::DistanceField;
+pub use filter::Certificate;
 use resolve::{LeafOutput, Port, PortId, Resolver, Tolerances};
 use serde_json::json;
 use std::time::Instant;
@@ -87,7 +88,7 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
                 });
             }
         }
-        Resolver::new(fields, tol, l as u32).resolve(leaf.aabb, &leaf.sites, ports, &mut out);
+        Resolver::new(fields, tol, l as u32).resolve_leaf(leaf, ports, &mut out);
         out
     };
     let outputs: Vec<LeafOutput> = map(params.parallel, &leaf_ids, resolve_one);

@@ -8,6 +8,7 @@
 use super::filter::{self, Certificate};
 use super::segments::{label, transitions};
 use super::trace;
+use super::tree::Leaf;
 use crate::geom::{Aabb, Axis, Point};
 use crate::site::DistanceField;
 
@@ -83,6 +84,15 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
             tol,
             leaf,
             next_inner: 0,
+        }
+    }
+
+    /// Resolves a leaf of the subdivision, using the certificate it stopped with.
+    pub fn resolve_leaf(&mut self, leaf: &Leaf, ports: Vec<Port>, out: &mut LeafOutput) {
+        if let Certificate::Monotone { over_y } = leaf.certificate {
+            self.join_monotone(&leaf.aabb, &ports, over_y, out);
+        } else {
+            self.resolve(leaf.aabb, &leaf.sites, ports, out);
         }
     }
 

@@ -297,6 +297,22 @@ impl<F: DistanceField> Scan<'_, F> {
             }
             c
         };
+        if cands.len() == 2 {
+            // one bisector: its root, by regula falsi
+            let h = |t: f64| {
+                let q = self.at(t);
+                self.fields[l0 as usize].value(q) - self.fields[l1 as usize].value(q)
+            };
+            let (h0, h1) = (h(t0), h(t1));
+            if h0 <= 0.0 && h1 >= 0.0 && h0 != h1 {
+                let t = super::trace::illinois(h, t0, t1, h0, h1);
+                out.push(Transition {
+                    at: self.at(t),
+                    pair: [l0, l1],
+                });
+                return;
+            }
+        }
         for _ in 0..64 {
             let tm = 0.5 * (t0 + t1);
             if tm <= t0 || tm >= t1 {

@@ -35,20 +35,17 @@ pub fn project<F: DistanceField>(
         }
     }
     let t1 = found?;
-    let (mut lo, mut hi) = (0.0f64, t1);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if mid == lo || mid == hi {
-            break;
-        }
-        let h = diff(fields, a, b, m + n * mid);
-        if (h > 0.0) == (h0 > 0.0) && h != 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
+    let h1 = diff(fields, a, b, m + n * t1);
+    if h1 == 0.0 {
+        return Some(m + n * t1);
     }
-    Some(m + n * (0.5 * (lo + hi)))
+    let (lo, hi, hl, hh) = if t1 > 0.0 {
+        (0.0, t1, h0, h1)
+    } else {
+        (t1, 0.0, h1, h0)
+    };
+    let t = illinois(|t| diff(fields, a, b, m + n * t), lo, hi, hl, hh);
+    Some(m + n * t)
 }
 
 /// A polyline from `p` to `q` (both on the bisector of `a` and `b`) whose points lie on
@@ -210,7 +207,7 @@ fn cross_section_root<F: DistanceField>(
             Point::new(t, s)
         }
     };
-    let (mut lo, mut hi) = if over_y {
+    let (lo, hi) = if over_y {
         (bx.min.x, bx.max.x)
     } else {
         (bx.min.y, bx.max.y)
@@ -226,20 +223,54 @@ fn cross_section_root<F: DistanceField>(
     if (h_lo > 0.0) == (h_hi > 0.0) {
         return None;
     }
-    for _ in 0..64 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
+    Some(at(illinois(
+        |s| diff(fields, a, b, at(s)),
+        lo,
+        hi,
+        h_lo,
+        h_hi,
+    )))
+}
+
+/// The root of `h` in `[lo, hi]` (with `h(lo)`, `h(hi)` of opposite signs) by the Illinois
+/// variant of regula falsi: superlinear on smooth functions, and every step keeps a
+/// bracket, falling back to bisection when the interpolant stalls.
+pub fn illinois(
+    h: impl Fn(f64) -> f64,
+    mut lo: f64,
+    mut hi: f64,
+    mut h_lo: f64,
+    mut h_hi: f64,
+) -> f64 {
+    let mut side = 0i8;
+    for _ in 0..100 {
+        let width = hi - lo;
+        if width <= 4.0 * f64::EPSILON * (lo.abs().max(hi.abs())) {
             break;
         }
-        let h = diff(fields, a, b, at(mid));
-        if h == 0.0 {
-            return Some(at(mid));
+        let mut s = (lo * h_hi - hi * h_lo) / (h_hi - h_lo);
+        if !(s > lo && s < hi) {
+            s = 0.5 * (lo + hi);
         }
-        if (h > 0.0) == (h_lo > 0.0) {
-            lo = mid;
+        let hs = h(s);
+        if hs == 0.0 {
+            return s;
+        }
+        if (hs > 0.0) == (h_lo > 0.0) {
+            lo = s;
+            h_lo = hs;
+            if side == -1 {
+                h_hi *= 0.5;
+            }
+            side = -1;
         } else {
-            hi = mid;
+            hi = s;
+            h_hi = hs;
+            if side == 1 {
+                h_lo *= 0.5;
+            }
+            side = 1;
         }
     }
-    Some(at(0.5 * (lo + hi)))
+    0.5 * (lo + hi)
 }

@@ -106,6 +106,9 @@ pub struct Leaf {
     pub ib: IBox,
     pub aabb: Aabb,
     pub sites: Vec<u32>,
+    /// What the certificate proved when the box stopped (`None`: one site, or stopped at
+    /// the resolution cut-off or the lattice's limit).
+    pub certificate: Certificate,
     /// Stopped at the resolution cut-off (or the lattice's limit) without a certificate.
     pub uncertified: bool,
 }
@@ -147,20 +150,24 @@ fn recurse<F: DistanceField>(
 ) {
     let sites = filter::lower_envelope(fields, &aabb, sites);
     let size = aabb.longest_side();
-    let leaf = |sites: &[(u32, F::State)], uncertified: bool| Leaf {
+    let leaf = |sites: &[(u32, F::State)], certificate: Certificate, uncertified: bool| Leaf {
         ib,
         aabb,
         sites: sites.iter().map(|s| s.0).collect(),
+        certificate,
         uncertified,
     };
     if sites.len() <= 1 {
-        out.push(leaf(&sites, false));
+        out.push(leaf(&sites, Certificate::None, false));
         return;
     }
     let too_big = params.max_box.is_some_and(|m| size > m * (1.0 + 1e-9));
-    if !too_big && filter::certify(fields, &aabb, &sites) != Certificate::None {
-        out.push(leaf(&sites, false));
-        return;
+    if !too_big {
+        let certificate = filter::certify(fields, &aabb, &sites);
+        if certificate != Certificate::None {
+            out.push(leaf(&sites, certificate, false));
+            return;
+        }
     }
     let axis = if aabb.width() >= aabb.height() { 0 } else { 1 };
     let split = if size <= params.min_box && !too_big {
@@ -169,7 +176,7 @@ fn recurse<F: DistanceField>(
         ib.split(axis)
     };
     let Some((li, ri, mid)) = split else {
-        out.push(leaf(&sites, true));
+        out.push(leaf(&sites, Certificate::None, true));
         return;
     };
     let at = lattice.point(mid, mid);

@@ -601,9 +601,19 @@ impl Bernstein2 {
     /// The Bernstein form of `p(x, y)` over `b` (terms containing `z` are dropped, i.e.
     /// `z = 0`), degrees `(deg_x p, deg_y p)`.
     pub fn from_poly(p: &Poly, b: &Aabb) -> Self {
-        let deg = [p.degree_in(0) as usize, p.degree_in(1) as usize];
+        let mut deg = [p.degree_in(0) as usize, p.degree_in(1) as usize];
+        // a box of zero width or height (a segment) needs no degree along that axis
+        if b.width() == 0.0 {
+            deg[0] = 0;
+        }
+        if b.height() == 0.0 {
+            deg[1] = 0;
+        }
         let terms = p.terms.iter().filter(|(e, _)| e[2] == 0).count();
-        if terms * 4 <= (deg[0] + 1) * (deg[1] + 1) {
+        if deg[0] < p.degree_in(0) as usize
+            || deg[1] < p.degree_in(1) as usize
+            || terms * 4 <= (deg[0] + 1) * (deg[1] + 1)
+        {
             return Self::from_sparse(p, b, deg);
         }
         let (deg, pow) = power_tensor(p, 2);
@@ -669,9 +679,19 @@ impl Bernstein2 {
     /// `Σ_m C(k,m) C(d−k,i−m) a^(i−m) b^m / C(d,i)`; a tensor coefficient is the sum over
     /// the terms of `c · β_i[k] · γ_j[l]`. The error bound counts every rounding against
     /// the sum of the absolute values of the summands.
+    /// An axis whose interval is a point gets degree 0: there `x^i` is the constant `a^i`.
     fn from_sparse(p: &Poly, b: &Aabb, deg: [usize; 2]) -> Self {
-        let ux = monomial_table(deg[0], b.min.x, b.max.x);
-        let uy = monomial_table(deg[1], b.min.y, b.max.y);
+        let table = |d: usize, full: u32, a: f64, b: f64| {
+            if d == 0 && full > 0 {
+                let v: Vec<f64> = (0..=full as i32).map(|i| a.powi(i)).collect();
+                let m = v.iter().map(|x| x.abs()).collect();
+                (v, m)
+            } else {
+                monomial_table(d, a, b)
+            }
+        };
+        let ux = table(deg[0], p.degree_in(0), b.min.x, b.max.x);
+        let uy = table(deg[1], p.degree_in(1), b.min.y, b.max.y);
         let (nx, ny) = (deg[0] + 1, deg[1] + 1);
         let mut coef = vec![0.0; nx * ny];
         let mut magnitude = vec![0.0f64; nx * ny];
@@ -686,7 +706,8 @@ impl Bernstein2 {
                 }
             }
         }
-        let rounding = (4 * (deg[0] + deg[1]) + 16 + 2 * p.terms.len()) as f64 * EPS;
+        let full = (p.degree_in(0) + p.degree_in(1)) as usize;
+        let rounding = (4 * full + 16 + 2 * p.terms.len()) as f64 * EPS;
         let worst = magnitude.iter().fold(0.0f64, |m, &x| m.max(x));
         let err = round_up(worst * rounding + TINY);
         if !err.is_finite() || coef.iter().any(|c| !c.is_finite()) {
@@ -917,6 +938,24 @@ mod tests {
             let gy = d.partial(1).eval(at.x, at.y, 0.0) * h;
             prop_assert!(grad[0].lo - 1e-9 * (1.0 + gx.abs()) <= gx && gx <= grad[0].hi + 1e-9 * (1.0 + gx.abs()));
             prop_assert!(grad[1].lo - 1e-9 * (1.0 + gy.abs()) <= gy && gy <= grad[1].hi + 1e-9 * (1.0 + gy.abs()));
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn segment_boxes_enclose_values(p in poly_strategy(2, 8), x0 in -3.0..3.0f64, y0 in -3.0..3.0f64,
+                                        w in 0.001..2.0f64, u in 0.0..=1.0f64, vertical in any::<bool>()) {
+            let b = if vertical {
+                Aabb::new(Point::new(x0, y0), Point::new(x0, y0 + w))
+            } else {
+                Aabb::new(Point::new(x0, y0), Point::new(x0 + w, y0))
+            };
+            let f = Bernstein2::from_poly(&p, &b);
+            prop_assert!(f.deg[usize::from(!vertical)] == 0);
+            let q = b.at(u, u);
+            let exact = p.eval(q.x, q.y, 0.0);
+            let r = f.range();
+            prop_assert!(r.lo <= exact + 1e-12 * exact.abs() && exact - 1e-12 * exact.abs() <= r.hi);
         }
     }
 

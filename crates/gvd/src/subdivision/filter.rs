@@ -33,18 +33,43 @@ pub fn lower_envelope<F: DistanceField>(
         bounds[k - 1].lo <= upper
     });
     if sites.len() > 1 && sites.len() <= PAIRWISE_LIMIT {
-        let dominated: Vec<bool> = (0..sites.len())
-            .map(|a| {
-                (0..sites.len()).any(|c| c != a && pair(fields, &sites, a, c, b).value.lo > 0.0)
+        // the site with the least upper bound dominates most others; test against it first
+        let best = (0..sites.len())
+            .min_by(|&a, &c| {
+                let (ia, ic) = (sites[a].0 as usize, sites[c].0 as usize);
+                let (ua, uc) = (
+                    kept_upper(fields, &sites[a], b, ia),
+                    kept_upper(fields, &sites[c], b, ic),
+                );
+                ua.total_cmp(&uc)
             })
+            .unwrap_or(0);
+        let dominated: Vec<bool> = (0..sites.len())
+            .map(|a| a != best && pair(fields, &sites, a, best, b).value.lo > 0.0)
             .collect();
         let mut k = 0;
         sites.retain(|_| {
             k += 1;
             !dominated[k - 1]
         });
+        if sites.len() > 2 {
+            let dominated: Vec<bool> = (0..sites.len())
+                .map(|a| {
+                    (0..sites.len()).any(|c| c != a && pair(fields, &sites, a, c, b).value.lo > 0.0)
+                })
+                .collect();
+            let mut k = 0;
+            sites.retain(|_| {
+                k += 1;
+                !dominated[k - 1]
+            });
+        }
     }
     sites
+}
+
+fn kept_upper<F: DistanceField>(fields: &[F], site: &(u32, F::State), b: &Aabb, i: usize) -> f64 {
+    fields[i].bound(&site.1, b).hi
 }
 
 /// Bounds of `f_a − f_c` (or a sign-equivalent function) for sites at positions `a`, `c`.

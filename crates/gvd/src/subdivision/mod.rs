@@ -62,6 +62,7 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
     };
     let transitions: Vec<Vec<segments::Transition>> =
         map(params.parallel, &segs.segments, scan_one);
+    let t_scan = start.elapsed().as_secs_f64();
 
     let tol = Tolerances {
         trace: 0.25 * eps,
@@ -92,6 +93,7 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
         out
     };
     let outputs: Vec<LeafOutput> = map(params.parallel, &leaf_ids, resolve_one);
+    let t_resolve = start.elapsed().as_secs_f64();
     let uncertified: u32 = outputs.iter().map(|o| o.uncertified).sum();
     let local_splits: u32 = outputs.iter().map(|o| o.local_splits).sum();
     let mut complex = assemble::assemble(outputs, 0.5 * eps, 0.125 * eps);
@@ -100,6 +102,8 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
     let stats = &mut complex.stats;
     stats.insert("seconds".into(), json!(start.elapsed().as_secs_f64()));
     stats.insert("seconds_subdivision".into(), json!(t_subdivide));
+    stats.insert("seconds_segments".into(), json!(t_scan - t_subdivide));
+    stats.insert("seconds_leaves".into(), json!(t_resolve - t_scan));
     stats.insert("engine".into(), json!("subdivision"));
     stats.insert("boxes".into(), json!(spanning));
     stats.insert("leaves".into(), json!(leaves.len()));

@@ -237,8 +237,15 @@ impl<F: DistanceField> Scan<'_, F> {
             // one root at most when h is monotone along the segment
             let p = super::filter::pair(self.fields, &sites, 0, 1, &b);
             p.gradient.is_some_and(|g| {
+                // the derivative along the segment (a segment's box has no extent, hence
+                // no gradient bound, across it)
                 let d = self.p1 - self.p0;
-                (g[0].scale(d.x) + g[1].scale(d.y)).excludes_zero()
+                let along = match (d.x == 0.0, d.y == 0.0) {
+                    (false, true) => g[0].scale(d.x),
+                    (true, false) => g[1].scale(d.y),
+                    _ => g[0].scale(d.x) + g[1].scale(d.y),
+                };
+                along.excludes_zero()
             })
         };
         if short || simple || sites.len() <= 1 {

@@ -1,10 +1,16 @@
 //! Sites as distance fields. The subdivision engine sees only the [`DistanceField`]
 //! trait; each site family lives in its own file and [`SiteField`] dispatches to it.
 
+mod circle;
+mod ellipse;
 mod euclidean;
+pub mod implicit;
 mod polynomial;
 
+pub use circle::CircleField;
+pub use ellipse::{offset_polynomial, EllipseField};
 pub use euclidean::EuclideanPoint;
+pub use implicit::{ImplicitField, ImplicitState};
 pub use polynomial::PolynomialField;
 
 use crate::error::Error;
@@ -80,6 +86,12 @@ pub fn bound_difference<F: DistanceField + ?Sized>(
 pub enum SiteField {
     Euclidean(EuclideanPoint),
     Polynomial(PolynomialField),
+    /// A circle by its closed form `|q − c| − r`.
+    Circle(CircleField),
+    /// An implicit field (§3): `implicit_field` sites, and circles on the implicit path.
+    Implicit(Box<ImplicitField>),
+    /// An ellipse: implicit box bounds, closed-form point values.
+    Ellipse(Box<EllipseField>),
 }
 
 /// The per-box state of a [`SiteField`].
@@ -87,13 +99,47 @@ pub enum SiteField {
 pub enum FieldState {
     None,
     Bernstein(Box<Bernstein2>),
+    Implicit(Box<ImplicitState>),
+}
+
+/// Choices among equivalent fields for a site kind.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FieldOptions {
+    /// Circles through the implicit path (Bernstein forms of `|q − c|² − w²`) instead of
+    /// their closed form (the default, faster: see `gvd bench implicit`).
+    pub implicit_circles: bool,
 }
 
 impl SiteField {
     /// The distance field of site `index` of a scene, or an error when no field of the
-    /// subdivision engine can represent it yet.
-    pub fn from_site(index: usize, kind: &SiteKind) -> Result<SiteField, Error> {
+    /// subdivision engine can represent it yet (default [`FieldOptions`]).
+    pub fn from_site(index: usize, kind: &SiteKind, domain: &Aabb) -> Result<SiteField, Error> {
+        SiteField::from_site_with(index, kind, domain, &FieldOptions::default())
+    }
+
+    /// [`SiteField::from_site`] with explicit choices.
+    pub fn from_site_with(
+        index: usize,
+        kind: &SiteKind,
+        domain: &Aabb,
+        options: &FieldOptions,
+    ) -> Result<SiteField, Error> {
         match kind {
+            SiteKind::Circle { center, radius } => Ok(if options.implicit_circles {
+                SiteField::Implicit(Box::new(ImplicitField::circle(*center, *radius)))
+            } else {
+                SiteField::Circle(CircleField::new(*center, *radius))
+            }),
+            SiteKind::Ellipse {
+                center,
+                semi_axes,
+                rotation,
+            } => Ok(SiteField::Ellipse(Box::new(EllipseField::new(
+                *center, *semi_axes, *rotation,
+            )))),
+            SiteKind::ImplicitField { equation } => Ok(SiteField::Implicit(Box::new(
+                ImplicitField::new(index, &equation.poly, domain)?,
+            ))),
             SiteKind::Point { at, metric } => Ok(match metric {
                 Metric::Euclidean => SiteField::Euclidean(EuclideanPoint::new(*at)),
                 _ => SiteField::Polynomial(PolynomialField::from_metric(*at, metric)),
@@ -111,11 +157,16 @@ impl SiteField {
 
     /// The fields of every site of a scene.
     pub fn for_scene(scene: &Scene) -> Result<Vec<SiteField>, Error> {
+        SiteField::for_scene_with(scene, &FieldOptions::default())
+    }
+
+    /// The fields of every site of a scene, with explicit choices.
+    pub fn for_scene_with(scene: &Scene, options: &FieldOptions) -> Result<Vec<SiteField>, Error> {
         scene
             .sites
             .iter()
             .enumerate()
-            .map(|(i, s)| SiteField::from_site(i, &s.kind))
+            .map(|(i, s)| SiteField::from_site_with(i, &s.kind, &scene.domain, options))
             .collect()
     }
 }
@@ -125,8 +176,10 @@ impl DistanceField for SiteField {
 
     fn state(&self, b: &Aabb) -> FieldState {
         match self {
-            SiteField::Euclidean(_) => FieldState::None,
+            SiteField::Euclidean(_) | SiteField::Circle(_) => FieldState::None,
             SiteField::Polynomial(f) => FieldState::Bernstein(Box::new(f.bernstein(b))),
+            SiteField::Implicit(f) => FieldState::Implicit(Box::new(f.state(b))),
+            SiteField::Ellipse(f) => FieldState::Implicit(Box::new(f.state(b))),
         }
     }
 
@@ -139,6 +192,24 @@ impl DistanceField for SiteField {
                     FieldState::Bernstein(Box::new(r)),
                 )
             }
+            (SiteField::Implicit(f), FieldState::Implicit(st)) => {
+                let (l, r) = f.split(st, b, axis, at);
+                (
+                    FieldState::Implicit(Box::new(l)),
+                    FieldState::Implicit(Box::new(r)),
+                )
+            }
+            (SiteField::Ellipse(f), FieldState::Implicit(st)) => {
+                let (l, r) = f.split(st, b, axis, at);
+                (
+                    FieldState::Implicit(Box::new(l)),
+                    FieldState::Implicit(Box::new(r)),
+                )
+            }
+            (SiteField::Implicit(_) | SiteField::Ellipse(_), _) => {
+                let (lb, rb) = b.split(axis, at);
+                (self.state(&lb), self.state(&rb))
+            }
             _ => (FieldState::None, FieldState::None),
         }
     }
@@ -146,8 +217,13 @@ impl DistanceField for SiteField {
     fn bound(&self, s: &FieldState, b: &Aabb) -> Interval {
         match (self, s) {
             (SiteField::Euclidean(e), _) => e.bound(b),
+            (SiteField::Circle(c), _) => c.bound(b),
             (SiteField::Polynomial(_), FieldState::Bernstein(bf)) => bf.range(),
-            (SiteField::Polynomial(f), FieldState::None) => f.bernstein(b).range(),
+            (SiteField::Polynomial(f), _) => f.bernstein(b).range(),
+            (SiteField::Implicit(f), FieldState::Implicit(st)) => f.bound(st),
+            (SiteField::Implicit(f), _) => f.bound(&f.state(b)),
+            (SiteField::Ellipse(f), FieldState::Implicit(st)) => f.bound(st),
+            (SiteField::Ellipse(f), _) => f.bound(&f.state(b)),
         }
     }
 
@@ -157,9 +233,12 @@ impl DistanceField for SiteField {
             (SiteField::Polynomial(_), FieldState::Bernstein(bf)) => {
                 Some(polynomial::gradient_bound(bf, b))
             }
-            (SiteField::Polynomial(f), FieldState::None) => {
-                Some(polynomial::gradient_bound(&f.bernstein(b), b))
-            }
+            (SiteField::Polynomial(f), _) => Some(polynomial::gradient_bound(&f.bernstein(b), b)),
+            (SiteField::Circle(c), _) => Some(c.gradient_bound(b)),
+            (SiteField::Implicit(f), FieldState::Implicit(st)) => f.gradient_bound(st, b),
+            (SiteField::Implicit(f), _) => f.gradient_bound(&f.state(b), b),
+            (SiteField::Ellipse(f), FieldState::Implicit(st)) => f.gradient_bound(st, b),
+            (SiteField::Ellipse(f), _) => f.gradient_bound(&f.state(b), b),
         }
     }
 
@@ -167,6 +246,9 @@ impl DistanceField for SiteField {
         match self {
             SiteField::Euclidean(e) => e.value(q),
             SiteField::Polynomial(f) => f.value(q),
+            SiteField::Circle(c) => c.value(q),
+            SiteField::Implicit(f) => f.value(q),
+            SiteField::Ellipse(f) => f.value(q),
         }
     }
 
@@ -174,12 +256,24 @@ impl DistanceField for SiteField {
         match self {
             SiteField::Euclidean(e) => e.gradient(q),
             SiteField::Polynomial(f) => f.gradient(q),
+            SiteField::Circle(c) => c.gradient(q),
+            SiteField::Implicit(f) => f.gradient(q),
+            SiteField::Ellipse(f) => f.gradient(q),
         }
     }
 
     fn pair(&self, s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> PairBound {
         match (self, other, s, so) {
             (SiteField::Euclidean(p), SiteField::Euclidean(q), _, _) => p.pair(q, b),
+            (SiteField::Circle(p), SiteField::Circle(q), _, _) => {
+                circle::pair((p.center, p.radius), (q.center, q.radius), b)
+            }
+            (SiteField::Circle(p), SiteField::Euclidean(q), _, _) => {
+                circle::pair((p.center, p.radius), (q.at, 0.0), b)
+            }
+            (SiteField::Euclidean(p), SiteField::Circle(q), _, _) => {
+                circle::pair((p.at, 0.0), (q.center, q.radius), b)
+            }
             (
                 SiteField::Polynomial(_),
                 SiteField::Polynomial(_),

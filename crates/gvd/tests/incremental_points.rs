@@ -299,9 +299,9 @@ fn compare(points: &[Point], domain: Aabb, ours: &VoronoiComplex) {
     }
 }
 
-/// Half-edge invariants, the vertex orientations and the empty-circle property of
-/// every edge (locally Delaunay everywhere ⇒ the exact Voronoi diagram).
-fn check_graph(d: &PointDiagram, points: &[Point]) {
+/// Half-edge invariants: twins, next/prev, every face one cycle, Euler's formula, one
+/// face per distinct point.
+fn check_structure(d: &PointDiagram, points: &[Point]) {
     let nh = d.half_edge_count();
     assert_eq!(nh, 3 * d.vertex_count());
     let far = d.far_generators();
@@ -346,8 +346,20 @@ fn check_graph(d: &PointDiagram, points: &[Point]) {
         faces.len(),
         points.len() - d.duplicates().len() - d.skipped().len() + 3
     );
+}
+
+/// The exact geometry: every vertex counter-clockwise (clockwise at infinity) and every
+/// edge locally Delaunay (so the whole graph is the exact Voronoi diagram), with no
+/// sign overruled and no point skipped.
+fn check_geometry(d: &PointDiagram, points: &[Point]) {
     assert!(d.skipped().is_empty());
     assert_eq!(d.topology_counts().0, 0, "C4/C5 overruled an exact sign");
+    let nh = d.half_edge_count();
+    let far = d.far_generators();
+    let at = |f: Face| match f {
+        Face::Site(i) => points[i],
+        Face::Far(k) => far[k],
+    };
     for v in 0..d.vertex_count() {
         let [a, b, cc] = d.generators(v).map(at);
         let o = robust::orient2d(c(a), c(b), c(cc));
@@ -380,7 +392,8 @@ fn check_graph(d: &PointDiagram, points: &[Point]) {
 
 fn run(points: &[Point], domain: Aabb) -> VoronoiComplex {
     let d = PointDiagram::new(points, domain).unwrap();
-    check_graph(&d, points);
+    check_structure(&d, points);
+    check_geometry(&d, points);
     let out = d.to_complex();
     compare(points, domain, &out);
     out
@@ -506,7 +519,8 @@ fn tiny_cases_and_errors() {
         Point::new(0.3, 0.9),
     ];
     let d = PointDiagram::new(&pts, dom).unwrap();
-    check_graph(&d, &pts);
+    check_structure(&d, &pts);
+    check_geometry(&d, &pts);
     let mut dups = d.duplicates().to_vec();
     dups.sort_unstable();
     assert!(dups == [(2, 0)] || dups == [(0, 2)]);
@@ -577,6 +591,27 @@ fn nearly_coincident_points() {
         .collect();
     pts.extend(extra);
     run(&pts, Aabb::from_array([0.0, 0.0, 1.0, 1.0]));
+}
+
+/// Spreads of magnitude beyond the exact range (products underflow): whatever the
+/// signs say, the graph stays valid and the output consistent — no panic, no hang.
+#[test]
+fn beyond_the_exact_range_the_graph_stays_valid() {
+    let mut pts: Vec<Point> = grid(5).into_iter().map(|p| p * 1e-300).collect();
+    pts.extend([
+        Point::new(1.0, 1.0),
+        Point::new(-1.0, 0.5),
+        Point::new(0.3, -0.7),
+    ]);
+    pts.extend(random(50, 5).into_iter().map(|p| p * 1e-170));
+    pts.extend([Point::new(1e300, -1e300), Point::new(-1.5e300, 2e299)]);
+    let dom = Aabb::from_array([-2.0, -2.0, 2.0, 2.0]);
+    let d = PointDiagram::new(&pts, dom).unwrap();
+    check_structure(&d, &pts);
+    d.to_complex().check_invariants().unwrap();
+    let d = PointDiagram::new(&pts[..28], dom).unwrap();
+    check_structure(&d, &pts[..28]);
+    d.to_complex().check_invariants().unwrap();
 }
 
 fn dedup(mut v: Vec<Point>) -> Vec<Point> {

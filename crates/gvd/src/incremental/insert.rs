@@ -131,7 +131,7 @@ impl<'a> Builder<'a> {
     }
 
     /// B1, second half: the vertex of `s`'s face with the least `H`, if its exact sign
-    /// is negative; else any vertex of the face, then of the whole diagram, in conflict.
+    /// is negative; else any vertex in conflict on the faces around `s`, then anywhere.
     fn seed(&mut self, s: u32, p: Point) -> Option<u32> {
         let g = &self.graph;
         let h0 = g.leaving_with_left(self.face_vertex[s as usize], s);
@@ -153,20 +153,31 @@ impl<'a> Builder<'a> {
         if best != GHOST && self.conflict(best, p) {
             return Some(best);
         }
+        // `s` was nearest only up to rounding: look on the faces of `s` and of its
+        // neighbours, then (never seen in practice) everywhere.
         self.seed_fallbacks += 1;
         let mut h = h0;
         loop {
-            if self.conflict(h / 3, p) {
-                return Some(h / 3);
+            let t = self.graph.right(h);
+            let k0 = self
+                .graph
+                .leaving_with_left(self.face_vertex[t as usize], t);
+            let mut k = k0;
+            loop {
+                if self.conflict(k / 3, p) {
+                    return Some(k / 3);
+                }
+                k = self.graph.next(k);
+                if k == k0 {
+                    break;
+                }
             }
             h = self.graph.next(h);
             if h == h0 {
                 break;
             }
         }
-        (1..self.graph.gens.len() as u32)
-            .filter(|&v| self.conflict(v, p))
-            .min_by(|&a, &b| self.power(a, p).total_cmp(&self.power(b, p)))
+        (1..self.graph.gens.len() as u32).find(|&v| self.conflict(v, p))
     }
 
     /// Inserts site `i` (an index into `pts`).

@@ -117,6 +117,7 @@ impl Interval {
     }
 
     /// `self / d` for a divisor interval that excludes zero (`None` otherwise).
+    #[allow(clippy::should_implement_trait)] // partial: `None` when d holds 0
     pub fn div(self, d: Interval) -> Option<Self> {
         if !d.excludes_zero() {
             return None;

@@ -160,16 +160,16 @@ fn build_complex(
     // merged vertices: mean position, union of generators
     let mut index = vec![usize::MAX; found.len()];
     let mut acc: Vec<(Point, usize, Vec<u32>)> = Vec::new();
-    for v in 0..found.len() {
+    for (v, fv) in found.iter().enumerate() {
         let r = root(&mut parent, v);
         if index[r] == usize::MAX {
             index[r] = acc.len();
             acc.push((Point::new(0.0, 0.0), 0, Vec::new()));
         }
         let a = &mut acc[index[r]];
-        a.0 = a.0 + found[v].at;
+        a.0 = a.0 + fv.at;
         a.1 += 1;
-        a.2.extend_from_slice(&found[v].sites);
+        a.2.extend_from_slice(&fv.sites);
     }
     let mut out = VoronoiComplex::default();
     for (sum, n, mut sites) in acc {

@@ -304,11 +304,6 @@ fn compare(points: &[Point], domain: Aabb, ours: &VoronoiComplex) {
 fn check_structure(d: &PointDiagram, points: &[Point]) {
     let nh = d.half_edge_count();
     assert_eq!(nh, 3 * d.vertex_count());
-    let far = d.far_generators();
-    let at = |f: Face| match f {
-        Face::Site(i) => points[i],
-        Face::Far(k) => far[k],
-    };
     let mut faces: HashMap<Face, Vec<usize>> = HashMap::new();
     for h in 0..nh {
         let t = d.twin(h);
@@ -612,6 +607,55 @@ fn beyond_the_exact_range_the_graph_stays_valid() {
     let d = PointDiagram::new(&pts[..28], dom).unwrap();
     check_structure(&d, &pts[..28]);
     d.to_complex().check_invariants().unwrap();
+}
+
+/// Coincident copies: the least index owns the cell, the result equals that of the
+/// points without the later copies.
+#[test]
+fn duplicates_keep_the_least_index() {
+    let base = random(400, 17);
+    let mut pts = base.clone();
+    for k in 0..300 {
+        pts.push(base[(k * 7) % 400]);
+    }
+    pts.extend_from_slice(&base[..50]);
+    let dom = Aabb::from_array([0.0, 0.0, 1.0, 1.0]);
+    let d = PointDiagram::new(&pts, dom).unwrap();
+    check_structure(&d, &pts);
+    check_geometry(&d, &pts);
+    assert_eq!(d.duplicates().len(), 350);
+    for &(dup, owner) in d.duplicates() {
+        assert!(
+            owner < 400 && dup >= 400 && pts[dup] == pts[owner],
+            "({dup}, {owner})"
+        );
+    }
+    let (out, reference) = (d.to_complex(), points_voronoi(&base, dom).unwrap());
+    let key = |c: &VoronoiComplex| {
+        let mut v: Vec<(Vec<Generator>, Point)> =
+            c.vertices.iter().map(|v| (v.sites.clone(), v.at)).collect();
+        v.sort_by(|a, b| a.0.cmp(&b.0));
+        let mut e: Vec<([Generator; 2], f64)> = c
+            .edges
+            .iter()
+            .map(|e| {
+                let mut s = e.sites;
+                s.sort();
+                (s, e.points[0].dist(e.points[1]))
+            })
+            .collect();
+        e.sort_by_key(|a| a.0);
+        (v, e)
+    };
+    let ((v1, e1), (v2, e2)) = (key(&out), key(&reference));
+    assert_eq!(v1.len(), v2.len());
+    assert_eq!(e1.len(), e2.len());
+    for (a, b) in v1.iter().zip(&v2) {
+        assert!(a.0 == b.0 && a.1.dist(b.1) < 1e-14, "{a:?} vs {b:?}");
+    }
+    for (a, b) in e1.iter().zip(&e2) {
+        assert!(a.0 == b.0 && (a.1 - b.1).abs() < 1e-14, "{a:?} vs {b:?}");
+    }
 }
 
 fn dedup(mut v: Vec<Point>) -> Vec<Point> {

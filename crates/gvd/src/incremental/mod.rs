@@ -74,8 +74,8 @@ impl PointDiagram {
     /// (the far generators are placed so that no far face reaches it).
     ///
     /// Fails on non-finite coordinates, an empty or non-finite domain, or more than
-    /// 700 million points. Coincident points are allowed: the first one inserted owns
-    /// the cell (see [`duplicates`](Self::duplicates)).
+    /// 700 million points. Coincident points are allowed: the one with the least index
+    /// owns the cell (see [`duplicates`](Self::duplicates)).
     pub fn new(points: &[Point], domain: Aabb) -> Result<Self, Error> {
         let d = domain.to_array();
         if d.iter().any(|v| !v.is_finite()) || !(d[0] <= d[2] && d[1] <= d[3]) {
@@ -112,7 +112,7 @@ impl PointDiagram {
         let dom = Aabb::new(sp(domain.min), sp(domain.max));
 
         let scaled: Vec<Point> = points.iter().map(|&p| sp(p)).collect();
-        let input = order::brio(&scaled);
+        let mut input = order::brio(&scaled);
         let n = points.len();
         let mut pts: Vec<Point> = input.iter().map(|&i| scaled[i as usize]).collect();
         drop(scaled);
@@ -140,10 +140,18 @@ impl PointDiagram {
             match b.insert(i) {
                 Outcome::Inserted => {}
                 Outcome::Duplicate(s) => {
-                    duplicates.push((input[i as usize] as usize, input[s as usize] as usize))
+                    // The copy with the least input index owns the cell.
+                    let (i, s) = (i as usize, s as usize);
+                    if input[i] < input[s] {
+                        input.swap(i, s);
+                    }
+                    duplicates.push((input[i] as usize, s))
                 }
                 Outcome::Skipped => skipped.push(input[i as usize] as usize),
             }
+        }
+        for (_, s) in duplicates.iter_mut() {
+            *s = input[*s] as usize;
         }
         let (graph, overrides, seed_fallbacks) = (b.graph, b.overrides, b.seed_fallbacks);
         Ok(PointDiagram {
@@ -218,7 +226,7 @@ impl PointDiagram {
         [0, 1, 2].map(|k| self.pts[n + k] * (1.0 / self.scale))
     }
 
-    /// Input points that coincide with an earlier inserted one, as
+    /// Input points that coincide with another one of smaller index, as
     /// `(point, point owning the cell)`.
     pub fn duplicates(&self) -> &[(usize, usize)] {
         &self.duplicates
@@ -253,8 +261,8 @@ impl PointDiagram {
 ///   end vertices or `None` where the domain boundary cuts the edge; `sites[0]` lies to
 ///   the left of the direction `from → to`. Only edges that meet the domain with
 ///   positive length are listed;
-/// * generators are `Generator::Site(i)` with `i` the input index; a point equal to an
-///   earlier one has no cell.
+/// * generators are `Generator::Site(i)` with `i` the input index; a point equal to one
+///   of smaller index has no cell.
 pub fn points_voronoi(points: &[Point], domain: Aabb) -> Result<VoronoiComplex, Error> {
     Ok(PointDiagram::new(points, domain)?.to_complex())
 }

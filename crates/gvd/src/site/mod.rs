@@ -5,12 +5,14 @@ mod circle;
 mod ellipse;
 mod euclidean;
 pub mod implicit;
+mod lp;
 mod polynomial;
 
 pub use circle::CircleField;
 pub use ellipse::{offset_polynomial, EllipseField};
 pub use euclidean::EuclideanPoint;
 pub use implicit::{ImplicitField, ImplicitState};
+pub use lp::LpPoint;
 pub use polynomial::PolynomialField;
 
 use crate::error::Error;
@@ -86,6 +88,8 @@ pub fn bound_difference<F: DistanceField + ?Sized>(
 pub enum SiteField {
     Euclidean(EuclideanPoint),
     Polynomial(PolynomialField),
+    /// An lp point by its closed form (exact separable bounds).
+    Lp(LpPoint),
     /// A circle by its closed form `|q − c| − r`.
     Circle(CircleField),
     /// An implicit field (§3): `implicit_field` sites, and circles on the implicit path.
@@ -108,6 +112,9 @@ pub struct FieldOptions {
     /// Circles through the implicit path (Bernstein forms of `|q − c|² − w²`) instead of
     /// their closed form (the default, faster: see `gvd bench implicit`).
     pub implicit_circles: bool,
+    /// lp points through their Bernstein forms (the paper's path) instead of their
+    /// closed form (the default, faster and tighter: see `gvd bench emiris-table1`).
+    pub bernstein_lp: bool,
 }
 
 impl SiteField {
@@ -142,6 +149,7 @@ impl SiteField {
             ))),
             SiteKind::Point { at, metric } => Ok(match metric {
                 Metric::Euclidean => SiteField::Euclidean(EuclideanPoint::new(*at)),
+                Metric::Lp { p } if !options.bernstein_lp => SiteField::Lp(LpPoint::new(*at, *p)),
                 _ => SiteField::Polynomial(PolynomialField::from_metric(*at, metric)),
             }),
             SiteKind::Field { equation } => Ok(SiteField::Polynomial(PolynomialField::new(
@@ -176,7 +184,7 @@ impl DistanceField for SiteField {
 
     fn state(&self, b: &Aabb) -> FieldState {
         match self {
-            SiteField::Euclidean(_) | SiteField::Circle(_) => FieldState::None,
+            SiteField::Euclidean(_) | SiteField::Circle(_) | SiteField::Lp(_) => FieldState::None,
             SiteField::Polynomial(f) => FieldState::Bernstein(Box::new(f.bernstein(b))),
             SiteField::Implicit(f) => FieldState::Implicit(Box::new(f.state(b))),
             SiteField::Ellipse(f) => FieldState::Implicit(Box::new(f.state(b))),
@@ -217,6 +225,7 @@ impl DistanceField for SiteField {
     fn bound(&self, s: &FieldState, b: &Aabb) -> Interval {
         match (self, s) {
             (SiteField::Euclidean(e), _) => e.bound(b),
+            (SiteField::Lp(f), _) => f.bound(b),
             (SiteField::Circle(c), _) => c.bound(b),
             (SiteField::Polynomial(_), FieldState::Bernstein(bf)) => bf.range(),
             (SiteField::Polynomial(f), _) => f.bernstein(b).range(),
@@ -230,6 +239,7 @@ impl DistanceField for SiteField {
     fn gradient_bound(&self, s: &FieldState, b: &Aabb) -> Option<[Interval; 2]> {
         match (self, s) {
             (SiteField::Euclidean(e), _) => e.gradient_bound(b),
+            (SiteField::Lp(f), _) => Some(f.gradient_bound(b)),
             (SiteField::Polynomial(_), FieldState::Bernstein(bf)) => {
                 Some(polynomial::gradient_bound(bf, b))
             }
@@ -245,6 +255,7 @@ impl DistanceField for SiteField {
     fn value(&self, q: Point) -> f64 {
         match self {
             SiteField::Euclidean(e) => e.value(q),
+            SiteField::Lp(f) => f.value(q),
             SiteField::Polynomial(f) => f.value(q),
             SiteField::Circle(c) => c.value(q),
             SiteField::Implicit(f) => f.value(q),
@@ -255,6 +266,7 @@ impl DistanceField for SiteField {
     fn gradient(&self, q: Point) -> Point {
         match self {
             SiteField::Euclidean(e) => e.gradient(q),
+            SiteField::Lp(f) => f.gradient(q),
             SiteField::Polynomial(f) => f.gradient(q),
             SiteField::Circle(c) => c.gradient(q),
             SiteField::Implicit(f) => f.gradient(q),
@@ -265,6 +277,7 @@ impl DistanceField for SiteField {
     fn pair(&self, s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> PairBound {
         match (self, other, s, so) {
             (SiteField::Euclidean(p), SiteField::Euclidean(q), _, _) => p.pair(q, b),
+            (SiteField::Lp(p), SiteField::Lp(q), _, _) if p.p == q.p => p.pair(q, b),
             (SiteField::Circle(p), SiteField::Circle(q), _, _) => {
                 circle::pair((p.center, p.radius), (q.center, q.radius), b)
             }

@@ -255,7 +255,7 @@ fn dp(points: &[Point], i: usize, j: usize, tol: f64, keep: &mut [bool]) {
         return;
     }
     let (a, b) = (points[i], points[j]);
-    let dist = |p: Point| segment_distance(p, a, b);
+    let dist = |p: Point| super::trace::segment_distance(p, a, b);
     let (k, worst) = (i + 1..j)
         .map(|k| (k, dist(points[k])))
         .fold((i + 1, -1.0), |acc, x| if x.1 > acc.1 { x } else { acc });
@@ -264,16 +264,4 @@ fn dp(points: &[Point], i: usize, j: usize, tol: f64, keep: &mut [bool]) {
         dp(points, i, k, tol, keep);
         dp(points, k, j, tol, keep);
     }
-}
-
-/// The distance from `p` to the segment `ab`.
-fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let d = b - a;
-    let l2 = d.dot(d);
-    let t = if l2 == 0.0 {
-        0.0
-    } else {
-        ((p - a).dot(d) / l2).clamp(0.0, 1.0)
-    };
-    p.dist(a + d * t)
 }

@@ -165,26 +165,22 @@ fn graph_chord<F: DistanceField>(
     out: &mut Vec<Point>,
 ) {
     let param = |r: Point| if over_y { r.y } else { r.x };
-    if (param(q) - param(p)).abs() <= tol || depth >= 30 {
+    if p.dist(q) <= tol || depth >= 30 {
         out.push(q);
         return;
     }
-    let t = 0.5 * (param(p) + param(q));
-    let Some(m) = cross_section_root(fields, ab, t, over_y, bx) else {
+    let on_curve = |f: f64| {
+        let t = param(p) + f * (param(q) - param(p));
+        cross_section_root(fields, ab, t, over_y, bx)
+    };
+    let Some(m) = on_curve(0.5) else {
         out.push(q);
         return;
     };
-    let chord_mid = p.lerp(q, 0.5);
-    let off = {
-        let d = q - p;
-        let len = d.norm();
-        if len == 0.0 {
-            m.dist(p)
-        } else {
-            ((m - p).cross(d) / len).abs()
-        }
-    };
-    if off <= tol && m.dist(chord_mid) <= 4.0 * tol && depth >= 1 {
+    // the chord is kept when the curve's points at 1/4, 1/2 and 3/4 of the parameter
+    // range lie within tol of it
+    let near = |r: Option<Point>| r.is_none_or(|r| segment_distance(r, p, q) <= tol);
+    if segment_distance(m, p, q) <= tol && near(on_curve(0.25)) && near(on_curve(0.75)) {
         out.push(q);
         return;
     }
@@ -273,4 +269,16 @@ pub fn illinois(
         }
     }
     0.5 * (lo + hi)
+}
+
+/// The distance from `r` to the segment `pq`.
+pub fn segment_distance(r: Point, p: Point, q: Point) -> f64 {
+    let d = q - p;
+    let l2 = d.dot(d);
+    let t = if l2 == 0.0 {
+        0.0
+    } else {
+        ((r - p).dot(d) / l2).clamp(0.0, 1.0)
+    };
+    r.dist(p + d * t)
 }

@@ -5,7 +5,8 @@
 //! cargo run --release -p gvd --example bench_incremental [max_exponent=6]
 //! ```
 //!
-//! Uniform random points in the unit square (fixed seed), n = 10^4 .. 10^max. Columns:
+//! Uniform random points in the unit square (fixed seed), n = 10^4 .. 10^max, then a
+//! square grid of about 10^max points (every Voronoi vertex has four sites). Columns:
 //! our graph only (`PointDiagram::new`), the conversion alone (`to_complex`), graph + clipped `VoronoiComplex`
 //! (`points_voronoi`), spade's `bulk_load`, and the ratios to spade. Best of three
 //! runs below 10^6, one run at 10^6 and above.
@@ -45,7 +46,7 @@ fn main() {
         .unwrap_or(6);
     let domain = Aabb::from_array([0.0, 0.0, 1.0, 1.0]);
     println!(
-        "{:>9} {:>10} {:>10} {:>13} {:>10} {:>11} {:>12} {:>10} {:>10}",
+        "{:>12} {:>10} {:>10} {:>13} {:>10} {:>11} {:>12} {:>10} {:>10}",
         "n",
         "graph s",
         "output s",
@@ -56,9 +57,29 @@ fn main() {
         "vertices",
         "edges"
     );
-    for e in 4..=max_exp {
-        let n = 10usize.pow(e);
-        let pts = random_points(n, 0x5EED + u64::from(e));
+    let mut cases: Vec<(String, Vec<Point>, Aabb)> = (4..=max_exp)
+        .map(|e| {
+            let n = 10usize.pow(e);
+            (
+                n.to_string(),
+                random_points(n, 0x5EED + u64::from(e)),
+                domain,
+            )
+        })
+        .collect();
+    // A degenerate input of the largest size: a square grid (cocircular quadruples).
+    let k = 10usize.pow(max_exp).isqrt();
+    let grid = (0..k * k)
+        .map(|i| Point::new((i % k) as f64, (i / k) as f64))
+        .collect();
+    let side = k as f64 - 1.0;
+    cases.push((
+        format!("grid {k}^2"),
+        grid,
+        Aabb::from_array([0.0, 0.0, side, side]),
+    ));
+    for &(ref name, ref pts, domain) in &cases {
+        let n = pts.len();
         let runs = if n >= 1_000_000 { 1 } else { 3 };
         let (t_graph, d) = best_of(runs, || {
             PointDiagram::new(&pts, domain).expect("valid input")
@@ -66,15 +87,15 @@ fn main() {
         assert_eq!(d.topology_counts().0, 0);
         let (t_out, out) = best_of(runs, || d.to_complex());
         drop((d, out));
-        let (t_total, out) = best_of(runs, || points_voronoi(&pts, domain).expect("valid input"));
+        let (t_total, out) = best_of(runs, || points_voronoi(pts, domain).expect("valid input"));
         let sp: Vec<Point2<f64>> = pts.iter().map(|p| Point2::new(p.x, p.y)).collect();
         let (t_spade, t) = best_of(runs, || {
             DelaunayTriangulation::<Point2<f64>>::bulk_load(sp.clone()).expect("spade")
         });
         assert_eq!(t.num_vertices(), n);
         println!(
-            "{:>9} {:>10.3} {:>10.3} {:>13.3} {:>10.3} {:>11.2} {:>12.2} {:>10} {:>10}",
-            n,
+            "{:>12} {:>10.3} {:>10.3} {:>13.3} {:>10.3} {:>11.2} {:>12.2} {:>10} {:>10}",
+            name,
             t_graph,
             t_out,
             t_total,

@@ -2,13 +2,16 @@
 //! Held 2001; the OpenVoronoi wiki page in `../shared/papers/`), for Euclidean points.
 //!
 //! The diagram starts as G(3), the diagram of three far generators enclosing the sites
-//! and the domain, and takes one site at a time (see [`insert`](self) for the steps):
-//! the tree `T` of vertices that the new site's region swallows is found from a seed by
-//! the exact incircle sign `H < 0`, under the topological conditions that keep `T` a
-//! tree (C4) and every old face's remainder connected (C5); new vertices go on the edges
-//! leaving `T`, the new face cycle joins them, and `T` is deleted. Every decision that
-//! could break the graph is a combinatorial one, so the result is a valid planar graph
-//! for any input.
+//! and the domain, and takes one site at a time (steps B1, B2, A2–A4 of the wiki page,
+//! in `insert.rs`): the tree `T` of vertices that the new site's region swallows is
+//! grown from a seed by the exact incircle sign `H < 0`, under the topological
+//! conditions that keep `T` a tree (C4) and every old face's remainder connected (C5);
+//! new vertices go on the edges leaving `T`, the new face cycle joins them, and `T` is
+//! deleted. Every decision that could break the graph is a combinatorial one, so the
+//! result is a valid planar graph for any input. The signs are exact (after an exact
+//! power-of-two rescaling) as long as no products underflow, i.e. nonzero coordinate
+//! differences exceed about 10^-70 times the largest coordinate; the graph is then the
+//! exact Voronoi diagram.
 //!
 //! Sites are inserted in a biased randomized order along a Hilbert curve and located by
 //! a walk from the previous site, which keeps the expected cost O(n log n).

@@ -82,7 +82,7 @@ fn main() {
         let n = pts.len();
         let runs = if n >= 1_000_000 { 1 } else { 3 };
         let (t_graph, d) = best_of(runs, || {
-            PointDiagram::new(&pts, domain).expect("valid input")
+            PointDiagram::new(pts, domain).expect("valid input")
         });
         assert_eq!(d.topology_counts().0, 0);
         let (t_out, out) = best_of(runs, || d.to_complex());

@@ -588,6 +588,20 @@ fn nearly_coincident_points() {
     run(&pts, Aabb::from_array([0.0, 0.0, 1.0, 1.0]));
 }
 
+/// Sites outside the domain, a domain much larger than the sites, and a degenerate
+/// (zero-width) domain.
+#[test]
+fn domain_and_sites_apart() {
+    let pts: Vec<Point> = random(200, 23)
+        .into_iter()
+        .map(|p| p + Point::new(3.0, -0.5))
+        .collect();
+    run(&pts, Aabb::from_array([0.0, 0.0, 1.0, 1.0]));
+    run(&pts, Aabb::from_array([-1e4, -2e4, 3e4, 1e4]));
+    let out = run(&pts, Aabb::from_array([3.5, -1.0, 3.5, 1.0]));
+    assert!(out.vertices.len() <= 1);
+}
+
 /// Spreads of magnitude beyond the exact range (products underflow): whatever the
 /// signs say, the graph stays valid and the output consistent — no panic, no hang.
 #[test]

@@ -100,15 +100,23 @@ pub enum Certificate {
 }
 
 /// The monotonicity certificate of a pair bound: `∂h/∂x ≠ 0` makes the zero set a graph
-/// `x = g(y)` (sorted by y), `∂h/∂y ≠ 0` a graph `y = g(x)`.
+/// `x = g(y)` (sorted by y), `∂h/∂y ≠ 0` a graph `y = g(x)`. When both hold, the axis
+/// whose component is larger in magnitude wins, so that sorting along the other axis is
+/// well conditioned (a bisector of slope 1e-16 is a graph over y, but a useless one).
 pub fn monotone(p: &PairBound) -> Option<bool> {
     let g = p.gradient?;
-    if g[0].excludes_zero() {
-        Some(true)
-    } else if g[1].excludes_zero() {
-        Some(false)
-    } else {
+    let least = |i: Interval| {
+        if i.excludes_zero() {
+            i.lo.abs().min(i.hi.abs())
+        } else {
+            0.0
+        }
+    };
+    let (mx, my) = (least(g[0]), least(g[1]));
+    if mx == 0.0 && my == 0.0 {
         None
+    } else {
+        Some(mx >= my)
     }
 }
 

@@ -233,9 +233,19 @@ impl<F: DistanceField> Scan<'_, F> {
             return;
         }
         let short = (t1 - t0) * self.len <= self.min_len;
-        let simple = sites.len() == 2 && {
+        let pair = (sites.len() == 2).then(|| super::filter::pair(self.fields, &sites, 0, 1, &b));
+        if let Some(p) = &pair {
+            // an exact tie along the whole piece (a bisector lying on a box side, as in
+            // grids): the labels follow the tie rule, so there is nothing to find inside
+            let scale = self.fields[sites[0].0 as usize]
+                .bound(&sites[0].1, &b)
+                .mag();
+            if l0 == l1 && p.value.mag() <= 1e-12 * scale {
+                return;
+            }
+        }
+        let simple = pair.as_ref().is_some_and(|p| {
             // one root at most when h is monotone along the segment
-            let p = super::filter::pair(self.fields, &sites, 0, 1, &b);
             p.gradient.is_some_and(|g| {
                 // the derivative along the segment (a segment's box has no extent, hence
                 // no gradient bound, across it)
@@ -247,7 +257,7 @@ impl<F: DistanceField> Scan<'_, F> {
                 };
                 along.excludes_zero()
             })
-        };
+        });
         if short || simple || sites.len() <= 1 {
             if l0 != l1 {
                 let cands: Vec<u32> = sites.iter().map(|s| s.0).collect();

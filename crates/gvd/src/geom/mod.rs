@@ -38,9 +38,10 @@ impl Point {
     pub fn cross(self, o: Point) -> f64 {
         self.x * o.y - self.y * o.x
     }
+    /// `sqrt(x² + y²)` (not `hypot`: several times faster, exact enough far below 1e150).
     #[inline]
     pub fn norm(self) -> f64 {
-        self.x.hypot(self.y)
+        (self.x * self.x + self.y * self.y).sqrt()
     }
     #[inline]
     pub fn dist(self, o: Point) -> f64 {

@@ -84,7 +84,10 @@ impl VoronoiComplex {
                 return Err(format!("edge {k} has fewer than two points"));
             }
             if e.sites[0] == e.sites[1] && matches!(e.sites[0], Generator::Site(_)) {
-                return Err(format!("edge {k} separates site {} from itself", e.sites[0].site()));
+                return Err(format!(
+                    "edge {k} separates site {} from itself",
+                    e.sites[0].site()
+                ));
             }
             for end in [e.from, e.to].into_iter().flatten() {
                 let Some(v) = self.vertices.get(end) else {

@@ -152,7 +152,7 @@ impl EllipseField {
                 hi = hi.min(t);
             }
             let mut next = t - v / d;
-            if !(next > lo && next < hi) || !next.is_finite() {
+            if !(next > lo && next < hi && next.is_finite()) {
                 next = 0.5 * (lo + hi);
             }
             if (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE) {

@@ -74,7 +74,7 @@ fn metric(kind: &str, rng: &mut Rng) -> Metric {
             let (l1, l2, th) = (
                 rng.range(0.5, 2.0),
                 rng.range(0.5, 2.0),
-                rng.range(0.0, 3.14159),
+                rng.range(0.0, std::f64::consts::PI),
             );
             let (c, s) = (th.cos(), th.sin());
             let m00 = l1 * c * c + l2 * s * s;

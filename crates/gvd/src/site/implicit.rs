@@ -35,6 +35,9 @@ use crate::num::Interval;
 const ROOT_WIDTH: f64 = 1e-7;
 /// Depth of the search for a certified sign change of an envelope.
 const SIGN_DEPTH: u32 = 26;
+/// Depth and work of the search along `z` (pieces of `T`).
+const Z_DEPTH: u32 = 10;
+const Z_PIECES: u32 = 64;
 
 /// A field given implicitly by `g(x, y, z)`.
 #[derive(Clone, Debug)]
@@ -52,7 +55,8 @@ pub struct ImplicitField {
     shift: f64,
     /// Where this is negative (local coordinates) the field is 0.
     inside: Option<Poly>,
-    /// The field is a Euclidean distance: its gradient has norm at most 1.
+    /// The field is a Euclidean distance: its gradient has norm at most 1; and `g` has a
+    /// non-negative root everywhere with `g(q, 0) ≥ 0` (circles, ellipses).
     lipschitz: bool,
 }
 
@@ -280,7 +284,8 @@ impl ImplicitField {
     ) -> ImplicitState {
         let mut rounds = 0;
         loop {
-            let info = analyse(&form);
+            // distance fields have g(q, 0) ≥ 0 and no root below T.lo: g(q, T.lo) ≥ 0
+            let info = analyse(&form, self.lipschitz);
             let Some((ulo, uhi, found)) = info else {
                 // no root in t for any point of the box: the field is 0 there
                 let mut s = ImplicitState {
@@ -297,12 +302,28 @@ impl ImplicitField {
             };
             exists |= found;
             let w = t.width();
-            let root = Interval::new(
+            let mut root = Interval::new(
                 round_down(t.lo + ulo * w).max(t.lo),
                 round_up(t.lo + uhi * w).min(t.hi),
             );
+            if self.lipschitz {
+                if let Some(l) = self.lipschitz_root(lb, root) {
+                    let r = Interval::new(root.lo.max(l.lo), root.hi.min(l.hi));
+                    if r.lo <= r.hi {
+                        root = r;
+                    }
+                }
+            }
+            let (ulo, uhi) = if w > 0.0 {
+                (
+                    ((root.lo - t.lo) / w).clamp(0.0, 1.0),
+                    ((root.hi - t.lo) / w).clamp(0.0, 1.0),
+                )
+            } else {
+                (0.0, 1.0)
+            };
             rounds += 1;
-            let narrow = uhi - ulo < 0.7 && root.lo <= root.hi && rounds <= 4 && w > 0.0;
+            let narrow = uhi - ulo < 0.7 && ulo <= uhi && rounds <= 3 && w > 0.0;
             if narrow {
                 // restrict the form to [ulo, uhi] in z
                 let mut f = form;
@@ -324,7 +345,7 @@ impl ImplicitField {
             let mut s = ImplicitState {
                 form: Some(form),
                 t,
-                exists,
+                exists: exists || self.lipschitz,
                 rootless: false,
                 root,
                 side,
@@ -333,6 +354,58 @@ impl ImplicitField {
             s.bound = self.value_bound(&s);
             return s;
         }
+    }
+
+    /// For a 1-Lipschitz root (a Euclidean distance to a curve, on both sides of it): an
+    /// enclosure of the smallest root over the (local) box from a certified enclosure at
+    /// the box's centre, found by the same §3.1 analysis on `g(centre, t)` over `root`
+    /// (interval coefficients), widened by the half-diagonal.
+    fn lipschitz_root(&self, lb: &Aabb, root: Interval) -> Option<Interval> {
+        if root.width() <= 0.0 {
+            return None;
+        }
+        let c = lb.center();
+        let (px, py, p0) = (
+            Interval::point(c.x),
+            Interval::point(c.y),
+            Interval::point(0.0),
+        );
+        let ck: Vec<Interval> = self
+            .coef
+            .iter()
+            .map(|p| p.eval_interval(px, py, p0))
+            .collect();
+        let mids: Vec<f64> = ck.iter().map(|i| i.mid()).collect();
+        let top = root.lo.abs().max(root.hi.abs());
+        let mut extra = 0.0;
+        for (k, i) in ck.iter().enumerate() {
+            let rad = round_up((i.hi - i.mid()).max(i.mid() - i.lo));
+            extra = round_up(extra + rad * round_up(top.powi(k as i32)) * (1.0 + 1e-12));
+        }
+        let f1 = Bernstein1::from_poly_1d(&mids, root);
+        let err = round_up(f1.err + extra);
+        if !err.is_finite() {
+            return None;
+        }
+        let n = f1.coef.len() - 1;
+        let b3 = Bernstein3 {
+            deg: [0, 0, n],
+            coef: f1.coef,
+            err,
+        };
+        let (ulo, uhi, found) = analyse(&b3, true)?;
+        if !found {
+            return None;
+        }
+        let w = root.width();
+        let tc = Interval::new(
+            round_down(root.lo + ulo * w).max(root.lo),
+            round_up(root.lo + uhi * w).min(root.hi),
+        );
+        let zc = if self.squared { tc.sqrt() } else { tc };
+        let hd = round_up(0.5 * lb.width().hypot(lb.height()) * (1.0 + 1e-12));
+        let z = Interval::new(round_down(zc.lo - hd).max(0.0), round_up(zc.hi + hd));
+        Some(if self.squared { z.sqr() } else { z })
     }
 
     /// The field bound of a settled state.
@@ -534,37 +607,70 @@ fn coef_spread(f: &Bernstein3) -> f64 {
 /// §3.1 on a form over box × `T` (relative `u ∈ [0,1]` along `T`): `None` when no point
 /// of the box has a root in `T`; else `(lo, hi, found)` with every smallest root in
 /// `[lo, hi]` and `found` when a root is proved for every point of the box.
-fn analyse(form: &Bernstein3) -> Option<(f64, f64, bool)> {
+///
+/// `nonneg_bottom`: `g ≥ 0` is known at the bottom of `T` for every point (a weak sign,
+/// enough for the upper bound). The search splits `T` (de Casteljau in `z`) from the
+/// bottom up: a piece where the envelope that keeps the bottom sign cannot vanish is
+/// skipped; the first piece where it can gives the lower bound; the first point where the
+/// other envelope is certified to have the opposite sign gives the upper bound. Splitting
+/// tightens both envelopes (the z control polygon converges to the polynomial).
+fn analyse(form: &Bernstein3, nonneg_bottom: bool) -> Option<(f64, f64, bool)> {
     let (m, big) = form.z_envelopes();
-    let sign0 = if m.coef[0] > 0.0 {
-        1
+    let sign0 = if m.coef[0] > 0.0 || nonneg_bottom {
+        1.0
     } else if big.coef[0] < 0.0 {
-        -1
+        -1.0
     } else {
-        0
+        return Some((0.0, 1.0, false));
     };
-    match sign0 {
-        1 => {
-            // g > 0 at the bottom: no root before m_g can vanish; a root once M_g ≤ 0
-            let lo = roots::first_root(&m, ROOT_WIDTH)?;
-            match first_nonpositive(&big) {
-                Some(hi) => Some((lo, hi.max(lo), true)),
-                None => Some((lo, 1.0, false)),
-            }
-        }
-        -1 => {
-            let lo = roots::first_root(&big, ROOT_WIDTH)?;
-            let neg = Bernstein1 {
-                coef: m.coef.iter().map(|c| -c).collect(),
-                err: m.err,
+    // envelopes of σ·g: `low` keeps the bottom sign, `high` must turn non-positive
+    let oriented = |f: &Bernstein3| {
+        let (m, big) = f.z_envelopes();
+        if sign0 > 0.0 {
+            (m, big)
+        } else {
+            let neg = |b: Bernstein1| Bernstein1 {
+                coef: b.coef.iter().map(|c| -c).collect(),
+                err: b.err,
             };
-            match first_nonpositive(&neg) {
-                Some(hi) => Some((lo, hi.max(lo), true)),
-                None => Some((lo, 1.0, false)),
-            }
+            (neg(big), neg(m))
         }
-        _ => Some((0.0, 1.0, false)),
+    };
+    let mut lower: Option<f64> = None;
+    let mut stack = vec![(form.clone(), 0.0f64, 1.0f64, 0u32)];
+    let mut pieces = 0;
+    while let Some((f, lo, hi, depth)) = stack.pop() {
+        pieces += 1;
+        let (low, high) = oriented(&f);
+        if low.coef.iter().all(|&c| c > 0.0) {
+            continue; // σ·g > 0 on the whole piece for every point
+        }
+        let w = hi - lo;
+        if lower.is_none() {
+            // where `low ≤ 0` already at the piece's bottom nothing is excluded; else
+            // `low > 0` up to its first root (none: positive on the whole piece)
+            let r = if low.coef[0] > 0.0 {
+                match roots::first_root(&low, ROOT_WIDTH) {
+                    Some(r) => r,
+                    None => continue,
+                }
+            } else {
+                0.0
+            };
+            lower = Some(lo + r * w);
+        }
+        if let Some(u) = first_nonpositive(&high) {
+            let l = lower.unwrap_or(lo);
+            return Some((l, (lo + u * w).max(l), true));
+        }
+        if depth < Z_DEPTH && pieces < Z_PIECES {
+            let (a, b) = f.split(2, 0.5);
+            let mid = lo + 0.5 * w;
+            stack.push((b, mid, hi, depth + 1));
+            stack.push((a, lo, mid, depth + 1));
+        }
     }
+    lower.map(|l| (l, 1.0, false))
 }
 
 /// The first `u ∈ [0, 1]` (to about `2^-SIGN_DEPTH`) at which `b ≤ 0` is certified, by a

@@ -120,7 +120,7 @@ fn bad_scene_messages() {
 #[test]
 fn project_scenes_parse() {
     let files = json_files(&data("scenes"));
-    assert_eq!(files.len(), 19);
+    assert!(files.len() >= 19, "only {} scenes", files.len());
     for path in files {
         let scene = parse_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert!(!scene.sites.is_empty(), "{}", path.display());

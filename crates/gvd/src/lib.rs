@@ -9,6 +9,7 @@
 //! println!("{} vertices, {} edges", diagram.vertices.len(), diagram.edges.len());
 //! ```
 
+pub mod cells;
 pub mod complex;
 mod compute;
 pub mod error;

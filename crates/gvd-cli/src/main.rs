@@ -97,6 +97,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let options = gvd::Options {
                 max_box,
                 parallel: threads != Some(1),
+                ..Default::default()
             };
             let out = gvd::compute_with_boxes(&sc, &options)
                 .with_context(|| format!("{}", scene.display()))?;

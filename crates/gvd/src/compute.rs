@@ -4,7 +4,7 @@ use crate::complex::VoronoiComplex;
 use crate::error::Error;
 use crate::geom::Aabb;
 use crate::scene::Scene;
-use crate::site::SiteField;
+use crate::site::{FieldOptions, SiteField};
 use crate::subdivision;
 
 /// How to compute a diagram.
@@ -16,6 +16,8 @@ pub struct Options {
     pub max_box: Option<f64>,
     /// Process independent boxes in parallel (same result either way).
     pub parallel: bool,
+    /// Choices among equivalent distance fields (closed forms or the general paths).
+    pub fields: FieldOptions,
 }
 
 impl Default for Options {
@@ -23,6 +25,7 @@ impl Default for Options {
         Options {
             max_box: None,
             parallel: cfg!(feature = "parallel"),
+            fields: FieldOptions::default(),
         }
     }
 }
@@ -41,7 +44,7 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 
 /// [`compute`], also returning the subdivision's leaves.
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
-    let fields = SiteField::for_scene(scene)?;
+    let fields = SiteField::for_scene_with(scene, &options.fields)?;
     let params = subdivision::Params {
         domain: scene.domain,
         epsilon: scene.epsilon,

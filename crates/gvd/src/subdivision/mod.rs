@@ -4,6 +4,7 @@
 
 mod assemble;
 mod filter;
+mod locate;
 mod resolve;
 mod segments;
 mod trace;
@@ -97,6 +98,9 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
     let uncertified: u32 = outputs.iter().map(|o| o.uncertified).sum();
     let local_splits: u32 = outputs.iter().map(|o| o.local_splits).sum();
     let mut complex = assemble::assemble(outputs, 0.5 * eps, 0.125 * eps);
+    let t_assemble = start.elapsed().as_secs_f64();
+    let locator = locate::Locator::new(fields, &leaves, params.domain);
+    complex.cells = crate::cells::build_cells(&complex, &params.domain, &|q| locator.nearest(q));
 
     let spanning = leaves.iter().filter(|l| l.sites.len() >= 2).count();
     let stats = &mut complex.stats;
@@ -104,6 +108,10 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
     stats.insert("seconds_subdivision".into(), json!(t_subdivide));
     stats.insert("seconds_segments".into(), json!(t_scan - t_subdivide));
     stats.insert("seconds_leaves".into(), json!(t_resolve - t_scan));
+    stats.insert(
+        "seconds_cells".into(),
+        json!(start.elapsed().as_secs_f64() - t_assemble),
+    );
     stats.insert("engine".into(), json!("subdivision"));
     stats.insert("boxes".into(), json!(spanning));
     stats.insert("leaves".into(), json!(leaves.len()));

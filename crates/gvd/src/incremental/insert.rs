@@ -9,7 +9,9 @@
 //!   `H(w, p) < 0` (exact incircle sign) and
 //!   **C4** `w` is adjacent to no other vertex of `T` (`T` stays a tree) and
 //!   **C5** `w`'s third face — the one not along the edge by which `w` was reached — has
-//!   no vertex in `T` yet (every old face keeps a single connected remaining part);
+//!   no vertex in `T` yet (every old face keeps a single connected remaining part;
+//!   as tested here C5 implies C4, since a second neighbour of `w` in `T` would lie on
+//!   that third face, but both are checked as on the wiki page);
 //! * **A2–A4** put one new vertex on every edge leaving `T`, join them by the new face
 //!   cycle of `p`, and delete `T` (whose slots the new vertices reuse).
 //!
@@ -50,6 +52,10 @@ pub(crate) struct Builder<'a> {
     pub(crate) overrides: usize,
     /// Insertions whose seed was not on the nearest face found (exhaustive search).
     pub(crate) seed_fallbacks: usize,
+    /// Test only: replace every sign by a coin flip, to check that the topological
+    /// conditions alone keep the graph valid.
+    #[cfg(test)]
+    pub(crate) chaos: Option<std::cell::Cell<u64>>,
 }
 
 #[inline]
@@ -81,6 +87,8 @@ impl<'a> Builder<'a> {
             last: far[0],
             overrides: 0,
             seed_fallbacks: 0,
+            #[cfg(test)]
+            chaos: None,
         }
     }
 
@@ -120,6 +128,15 @@ impl<'a> Builder<'a> {
 
     #[inline]
     fn conflict(&self, v: u32, p: Point) -> bool {
+        #[cfg(test)]
+        if let Some(state) = &self.chaos {
+            let x = state
+                .get()
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1);
+            state.set(x);
+            return v != GHOST && (x >> 40) % 3 != 0;
+        }
         let [a, b, c] = self.graph.gens[v as usize];
         v != GHOST && incircle(self.pos(a), self.pos(b), self.pos(c), p) > 0.0
     }
@@ -282,6 +299,84 @@ impl<'a> Builder<'a> {
         }
         if let Some(&(_, _, t)) = self.boundary.first() {
             self.face_vertex[p as usize] = t;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Checks twins, next/prev, one cycle per face, Euler; returns the face count.
+    fn check(g: &Graph) -> usize {
+        let nh = g.twin.len() as u32;
+        let mut count = std::collections::HashMap::new();
+        for h in 0..nh {
+            let t = g.twin[h as usize];
+            assert!(t < nh && t != h && g.twin[t as usize] == h);
+            assert_eq!(g.next(g.prev(h)), h);
+            assert_eq!(g.left(g.next(h)), g.left(h));
+            assert_eq!(g.left(t), g.right(h));
+            assert_ne!(g.left(h), g.right(h));
+            *count.entry(g.left(h)).or_insert(0usize) += 1;
+        }
+        let mut seen = std::collections::HashSet::new();
+        for h0 in 0..nh {
+            if !seen.insert(g.left(h0)) {
+                continue;
+            }
+            let (mut h, mut len) = (h0, 0);
+            loop {
+                len += 1;
+                h = g.next(h);
+                if h == h0 || len > nh as usize {
+                    break;
+                }
+            }
+            assert_eq!(
+                len,
+                count[&g.left(h0)],
+                "face {} is not one cycle",
+                g.left(h0)
+            );
+            assert!(len >= 3);
+        }
+        let (v, e, f) = (g.gens.len(), g.twin.len() / 2, count.len());
+        assert_eq!(v + f, e + 2, "Euler");
+        f
+    }
+
+    /// With every `H` sign replaced by a coin flip, C4 and C5 alone still yield a valid
+    /// planar graph after every insertion (the topology-oriented guarantee).
+    #[test]
+    fn topology_alone_keeps_the_graph_valid() {
+        let n = 300;
+        let mut pts: Vec<Point> = (0..n)
+            .map(|i| {
+                Point::new(
+                    ((i * 37) % 101) as f64 / 101.0,
+                    ((i * 61) % 89) as f64 / 89.0,
+                )
+            })
+            .collect();
+        pts.extend([
+            Point::new(0.5, 40.0),
+            Point::new(-40.0, -20.0),
+            Point::new(40.0, -20.0),
+        ]);
+        for seed in 1..20u64 {
+            let mut b = Builder::new(&pts, [n, n + 1, n + 2], n as usize);
+            b.chaos = Some(std::cell::Cell::new(seed));
+            let mut inserted = 0;
+            for i in 0..n {
+                if let Outcome::Inserted = b.insert(i) {
+                    inserted += 1;
+                }
+                if i % 50 == 0 {
+                    check(&b.graph);
+                }
+            }
+            assert_eq!(check(&b.graph), inserted + 3);
         }
     }
 }

@@ -1,6 +1,7 @@
 //! `gvd`: generalized Voronoi diagrams from the command line.
 
 mod bench;
+mod bench_implicit;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
@@ -160,6 +161,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
         } => match table.as_str() {
             "emiris-table1" => {
                 bench::emiris_table1(large, repeat.max(1));
+                Ok(ExitCode::SUCCESS)
+            }
+            "implicit" => {
+                bench_implicit::implicit(large, repeat.max(1));
                 Ok(ExitCode::SUCCESS)
             }
             other => bail!("unknown table '{other}' (known: emiris-table1)"),

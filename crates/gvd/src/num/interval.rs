@@ -92,18 +92,23 @@ impl Interval {
         Interval::new(lo, round_up(large * large))
     }
 
-    /// `self^n` for a non-negative integer `n`, tight for even and odd `n`.
+    /// `self^n` for a non-negative integer `n`, tight for even and odd `n`: the end
+    /// values' powers (monotone pieces), each widened by its rounding error.
     pub fn powi(self, n: u32) -> Self {
         match n {
             0 => Interval::point(1.0),
             1 => self,
-            _ if n % 2 == 0 => self.sqr().powi(n / 2),
-            _ => {
-                // odd power is monotone
-                let lo = pow_down(self.lo, n);
-                let hi = pow_up(self.hi, n);
-                Interval::new(lo, hi)
+            _ if n % 2 == 0 => {
+                let (a, b) = (self.lo.abs(), self.hi.abs());
+                let (small, large) = if a < b { (a, b) } else { (b, a) };
+                let lo = if self.lo <= 0.0 && self.hi >= 0.0 {
+                    0.0
+                } else {
+                    pow_enclosure(small, n).0.max(0.0)
+                };
+                Interval::new(lo, pow_enclosure(large, n).1)
             }
+            _ => Interval::new(pow_enclosure(self.lo, n).0, pow_enclosure(self.hi, n).1),
         }
     }
 
@@ -141,23 +146,12 @@ impl Interval {
     }
 }
 
-/// `x^n` rounded down (odd `n`, monotone), by repeated outward multiplication.
-fn pow_down(x: f64, n: u32) -> f64 {
-    Interval::point(x).repeated_mul(n).lo
-}
-
-fn pow_up(x: f64, n: u32) -> f64 {
-    Interval::point(x).repeated_mul(n).hi
-}
-
-impl Interval {
-    fn repeated_mul(self, n: u32) -> Self {
-        let mut r = self;
-        for _ in 1..n {
-            r = r * self;
-        }
-        r
-    }
+/// An enclosure of `x^n`: `powi` multiplies at most `2·log2(n)` times, each off by half
+/// an ulp, far inside the `2n` ulps allowed here; the absolute term covers subnormals.
+fn pow_enclosure(x: f64, n: u32) -> (f64, f64) {
+    let r = x.powi(n as i32);
+    let e = r.abs() * (2.0 * n as f64 * f64::EPSILON) + f64::MIN_POSITIVE;
+    (round_down(r - e), round_up(r + e))
 }
 
 impl Add for Interval {
@@ -239,6 +233,11 @@ mod tests {
             prop_assert!(x.sqr().contains(u * u));
             prop_assert!(x.powi(3).contains(u * u * u));
             prop_assert!(x.powi(4).contains(u * u * u * u));
+            let u7 = (1..7).fold(u, |acc, _| acc * u);
+            let slack = 1e-14 * u7.abs();
+            let p7 = x.powi(7);
+            prop_assert!(p7.lo - slack <= u7 && u7 <= p7.hi + slack);
+            prop_assert!(x.powi(8).lo <= (u7 * u).abs() * (1.0 + 1e-14));
         }
     }
 

@@ -28,7 +28,10 @@ fn scene(sites: Vec<SiteKind>) -> Scene {
         domain: Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
         epsilon: 0.001,
         mode: Mode::Voronoi,
-        sites: sites.into_iter().map(|kind| Site { id: None, kind }).collect(),
+        sites: sites
+            .into_iter()
+            .map(|kind| Site { id: None, kind })
+            .collect(),
     }
 }
 
@@ -150,8 +153,18 @@ pub fn implicit(large: bool, repeat: usize) {
         row("points (Euclidean)", &points(n, 11 + n as u64), closed, rep);
     }
     for n in [20, 200] {
-        row("ellipses (implicit)", &ellipses(n, 13 + n as u64), closed, repeat);
-        row("points (Euclidean)", &points(n, 17 + n as u64), closed, repeat);
+        row(
+            "ellipses (implicit)",
+            &ellipses(n, 13 + n as u64),
+            closed,
+            repeat,
+        );
+        row(
+            "points (Euclidean)",
+            &points(n, 17 + n as u64),
+            closed,
+            repeat,
+        );
     }
     if !large {
         println!("(add --large for circles n = 10000)");

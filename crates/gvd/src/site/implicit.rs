@@ -32,9 +32,12 @@ use crate::num::roots;
 use crate::num::Interval;
 
 /// Relative precision of the envelope root searches.
-const ROOT_WIDTH: f64 = 1e-7;
+const ROOT_WIDTH: f64 = 1e-5;
+/// A form inherited by splitting is converted afresh when its error exceeds this
+/// fraction of its coefficients' spread.
+const REFRESH: f64 = 1e-4;
 /// Depth of the search for a certified sign change of an envelope.
-const SIGN_DEPTH: u32 = 26;
+const SIGN_DEPTH: u32 = 18;
 /// Depth and work of the search along `z` (pieces of `T`).
 const Z_DEPTH: u32 = 10;
 const Z_PIECES: u32 = 64;
@@ -282,6 +285,21 @@ impl ImplicitField {
         side: Side,
         lb: &Aabb,
     ) -> ImplicitState {
+        // a distance field first narrows T by its certified centre root (cheap, 1-D),
+        // so that the §3.1 search below starts from a tight z-interval
+        let mut lip = None;
+        if self.lipschitz {
+            if let Some(l) = self.lipschitz_root(lb, t) {
+                let r = Interval::new(t.lo.max(l.lo), t.hi.min(l.hi));
+                if r.lo <= r.hi {
+                    lip = Some(r);
+                    if r.width() < 0.7 * t.width() {
+                        form = self.restrict(form, t, r, lb);
+                        t = r;
+                    }
+                }
+            }
+        }
         let mut rounds = 0;
         loop {
             // distance fields have g(q, 0) ≥ 0 and no root below T.lo: g(q, T.lo) ≥ 0
@@ -306,40 +324,16 @@ impl ImplicitField {
                 round_down(t.lo + ulo * w).max(t.lo),
                 round_up(t.lo + uhi * w).min(t.hi),
             );
-            if self.lipschitz {
-                if let Some(l) = self.lipschitz_root(lb, root) {
-                    let r = Interval::new(root.lo.max(l.lo), root.hi.min(l.hi));
-                    if r.lo <= r.hi {
-                        root = r;
-                    }
+            if let Some(l) = lip {
+                let r = Interval::new(root.lo.max(l.lo), root.hi.min(l.hi));
+                if r.lo <= r.hi {
+                    root = r;
                 }
             }
-            let (ulo, uhi) = if w > 0.0 {
-                (
-                    ((root.lo - t.lo) / w).clamp(0.0, 1.0),
-                    ((root.hi - t.lo) / w).clamp(0.0, 1.0),
-                )
-            } else {
-                (0.0, 1.0)
-            };
             rounds += 1;
-            let narrow = uhi - ulo < 0.7 && ulo <= uhi && rounds <= 3 && w > 0.0;
-            if narrow {
-                // restrict the form to [ulo, uhi] in z
-                let mut f = form;
-                if ulo > 0.0 {
-                    f = f.split(2, ulo).1;
-                }
-                if uhi < 1.0 {
-                    let rel = ((uhi - ulo) / (1.0 - ulo)).clamp(0.0, 1.0);
-                    f = f.split(2, rel).0;
-                }
+            if rounds <= 2 && w > 0.0 && root.width() < 0.7 * w {
+                form = self.restrict(form, t, root, lb);
                 t = root;
-                form = if f.err > 1e-6 * coef_spread(&f) {
-                    Bernstein3::from_poly(&self.g, lb, t)
-                } else {
-                    f
-                };
                 continue;
             }
             let mut s = ImplicitState {
@@ -353,6 +347,30 @@ impl ImplicitField {
             };
             s.bound = self.value_bound(&s);
             return s;
+        }
+    }
+
+    /// The form over box × `r` from the form over box × `t` (`r ⊆ t`): two de Casteljau
+    /// splits in z, or a fresh conversion when the inherited error dominates.
+    fn restrict(&self, form: Bernstein3, t: Interval, r: Interval, lb: &Aabb) -> Bernstein3 {
+        let w = t.width();
+        if w <= 0.0 {
+            return form;
+        }
+        let ulo = ((r.lo - t.lo) / w).clamp(0.0, 1.0);
+        let uhi = ((r.hi - t.lo) / w).clamp(ulo, 1.0);
+        let mut f = form;
+        if ulo > 0.0 {
+            f = f.split(2, ulo).1;
+        }
+        if uhi < 1.0 && ulo < 1.0 {
+            let rel = ((uhi - ulo) / (1.0 - ulo)).clamp(0.0, 1.0);
+            f = f.split(2, rel).0;
+        }
+        if f.err > REFRESH * coef_spread(&f) {
+            Bernstein3::from_poly(&self.g, lb, r)
+        } else {
+            f
         }
     }
 
@@ -465,7 +483,7 @@ impl ImplicitField {
                     ..s.clone()
                 };
             }
-            let f = if f.err > 1e-6 * coef_spread(&f) {
+            let f = if f.err > REFRESH * coef_spread(&f) {
                 Bernstein3::from_poly(&self.g, &llb, s.t)
             } else {
                 f

@@ -146,12 +146,27 @@ impl Interval {
     }
 }
 
-/// An enclosure of `x^n`: `powi` multiplies at most `2·log2(n)` times, each off by half
-/// an ulp, far inside the `2n` ulps allowed here; the absolute term covers subnormals.
+/// An enclosure of `x^n`: squaring multiplies at most `2·log2(n)` times, each off by
+/// half an ulp, far inside the `2n` ulps allowed here; the absolute term covers
+/// subnormals.
 fn pow_enclosure(x: f64, n: u32) -> (f64, f64) {
-    let r = x.powi(n as i32);
+    let r = ipow(x, n);
     let e = r.abs() * (2.0 * n as f64 * f64::EPSILON) + f64::MIN_POSITIVE;
     (round_down(r - e), round_up(r + e))
+}
+
+/// `x^n` by repeated squaring.
+#[inline]
+pub fn ipow(mut x: f64, mut n: u32) -> f64 {
+    let mut r = 1.0;
+    while n > 0 {
+        if n & 1 == 1 {
+            r *= x;
+        }
+        x *= x;
+        n >>= 1;
+    }
+    r
 }
 
 impl Add for Interval {

@@ -7,6 +7,7 @@
 
 use super::PairBound;
 use crate::geom::{Aabb, Point};
+use crate::num::interval::ipow;
 use crate::num::Interval;
 
 /// The field `(x − a)^p + (y − b)^p` of a point `(a, b)`, p even.
@@ -36,13 +37,12 @@ impl LpPoint {
     }
 
     pub fn value(&self, q: Point) -> f64 {
-        let p = self.p as i32;
-        (q.x - self.at.x).powi(p) + (q.y - self.at.y).powi(p)
+        ipow(q.x - self.at.x, self.p) + ipow(q.y - self.at.y, self.p)
     }
 
     pub fn gradient(&self, q: Point) -> Point {
-        let (k, p) = (self.p as f64, self.p as i32 - 1);
-        Point::new(k * (q.x - self.at.x).powi(p), k * (q.y - self.at.y).powi(p))
+        let (k, p) = (self.p as f64, self.p - 1);
+        Point::new(k * ipow(q.x - self.at.x, p), k * ipow(q.y - self.at.y, p))
     }
 
     /// Bounds of `f_self − f_other` for two lp points with the same p, coordinate by

@@ -129,6 +129,7 @@ fn time(scene: &Scene, options: &gvd::Options, repeat: usize) -> (f64, u64) {
 
 pub fn emiris_table1(large: bool, repeat: usize) {
     let one_core = gvd::Options {
+        engine: gvd::Engine::Subdivision,
         max_box: Some(0.05),
         parallel: false,
         ..Default::default()
@@ -190,6 +191,7 @@ pub fn emiris_table1(large: bool, repeat: usize) {
     if large {
         let threads = rayon::current_num_threads();
         let many = gvd::Options {
+            engine: gvd::Engine::Subdivision,
             max_box: Some(0.05),
             parallel: true,
             ..Default::default()

@@ -41,6 +41,10 @@ enum Command {
         /// Worker threads (default: all cores; 1 = sequential).
         #[arg(long)]
         threads: Option<usize>,
+        /// Algorithm family: `auto` takes the incremental engine for scenes of Euclidean
+        /// points and the subdivision engine otherwise.
+        #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
+        engine: EngineArg,
     },
     /// Check a diagram against its scene by brute force (independent of the engines).
     Verify {
@@ -66,6 +70,23 @@ enum Command {
     },
 }
 
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum EngineArg {
+    Auto,
+    Subdivision,
+    Incremental,
+}
+
+impl From<EngineArg> for gvd::Engine {
+    fn from(e: EngineArg) -> Self {
+        match e {
+            EngineArg::Auto => gvd::Engine::Auto,
+            EngineArg::Subdivision => gvd::Engine::Subdivision,
+            EngineArg::Incremental => gvd::Engine::Incremental,
+        }
+    }
+}
+
 fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(code) => code,
@@ -85,6 +106,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             boxes,
             max_box,
             threads,
+            engine,
         } => {
             if json.is_none() && svg.is_none() {
                 bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
@@ -96,6 +118,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             let sc = read_scene(&scene)?;
             let options = gvd::Options {
+                engine: engine.into(),
                 max_box,
                 parallel: threads != Some(1),
                 ..Default::default()

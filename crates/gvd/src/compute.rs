@@ -1,15 +1,34 @@
 //! The library's entry point: a scene in, its Voronoi complex out.
 
+use crate::cells;
 use crate::complex::VoronoiComplex;
 use crate::error::Error;
 use crate::geom::Aabb;
+use crate::geom::{Point, PointGrid};
+use crate::incremental;
 use crate::scene::Scene;
+use crate::scene::{Metric, SiteKind};
 use crate::site::{FieldOptions, SiteField};
 use crate::subdivision;
+
+/// Which algorithm family computes the diagram.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Engine {
+    /// The incremental engine where it applies (scenes of Euclidean points only), the
+    /// subdivision engine otherwise.
+    #[default]
+    Auto,
+    /// Subdivision over distance fields (Emiris et al. 2013): every supported site kind.
+    Subdivision,
+    /// Topology-oriented incremental construction: Euclidean points.
+    Incremental,
+}
 
 /// How to compute a diagram.
 #[derive(Clone, Debug)]
 pub struct Options {
+    /// Which algorithm family to use.
+    pub engine: Engine,
     /// Boxes holding two or more sites are split until no longer than this (the
     /// "maximum admissible box size" of Emiris et al., for smoother curves); `None`
     /// lets the certificates decide alone.
@@ -23,6 +42,7 @@ pub struct Options {
 impl Default for Options {
     fn default() -> Self {
         Options {
+            engine: Engine::Auto,
             max_box: None,
             parallel: cfg!(feature = "parallel"),
             fields: FieldOptions::default(),
@@ -42,8 +62,53 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
     compute_with_boxes(scene, options).map(|c| c.complex)
 }
 
-/// [`compute`], also returning the subdivision's leaves.
+/// [`compute`], also returning the subdivision's leaves (none for the incremental engine).
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
+    let points = euclidean_points(scene);
+    match (options.engine, points) {
+        (Engine::Auto | Engine::Incremental, Some(points)) => {
+            let start = std::time::Instant::now();
+            let mut complex = incremental::points_voronoi(&points, scene.domain)?;
+            if !points.is_empty() {
+                let grid = PointGrid::new(&points);
+                complex.cells =
+                    cells::build_cells(&complex, &scene.domain, &|q| grid.nearest(q).unwrap_or(0));
+            }
+            let stats = &mut complex.stats;
+            stats.insert(
+                "seconds".into(),
+                serde_json::json!(start.elapsed().as_secs_f64()),
+            );
+            stats.insert("engine".into(), serde_json::json!("incremental"));
+            return Ok(Computation {
+                complex,
+                boxes: Vec::new(),
+            });
+        }
+        (Engine::Incremental, None) => {
+            let (site, kind) = scene
+                .sites
+                .iter()
+                .enumerate()
+                .find(|(_, s)| {
+                    !matches!(
+                        s.kind,
+                        SiteKind::Point {
+                            metric: Metric::Euclidean,
+                            ..
+                        }
+                    )
+                })
+                .map(|(i, s)| (i, s.kind.name().to_string()))
+                .unwrap_or((0, "point".into()));
+            return Err(Error::Unsupported {
+                site,
+                kind,
+                message: "the incremental engine computes Euclidean points only (so far)".into(),
+            });
+        }
+        _ => {}
+    }
     let fields = SiteField::for_scene_with(scene, &options.fields)?;
     let params = subdivision::Params {
         domain: scene.domain,
@@ -56,4 +121,19 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         complex: out.complex,
         boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
     })
+}
+
+/// The sites' positions when every site is a Euclidean point.
+fn euclidean_points(scene: &Scene) -> Option<Vec<Point>> {
+    scene
+        .sites
+        .iter()
+        .map(|s| match s.kind {
+            SiteKind::Point {
+                at,
+                metric: Metric::Euclidean,
+            } => Some(at),
+            _ => None,
+        })
+        .collect()
 }

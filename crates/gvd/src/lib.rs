@@ -23,6 +23,6 @@ pub mod subdivision;
 pub mod verify;
 
 pub use complex::VoronoiComplex;
-pub use compute::{compute, compute_with_boxes, Computation, Options};
+pub use compute::{compute, compute_with_boxes, Computation, Engine, Options};
 pub use error::Error;
 pub use scene::Scene;

@@ -366,7 +366,11 @@ fn radius_zero_circles_give_the_point_diagram() {
         1e-3,
         pts.iter().map(|&(x, y)| circle(x, y, 0.0)).collect(),
     );
-    let reference = gvd::compute(&points, &gvd::Options::default()).unwrap();
+    let subdivision = gvd::Options {
+        engine: gvd::Engine::Subdivision,
+        ..Default::default()
+    };
+    let reference = gvd::compute(&points, &subdivision).unwrap();
     for opts in [FieldOptions::default(), implicit_circles()] {
         let d = run(&circles, opts);
         assert_eq!(d.vertices.len(), reference.vertices.len());

@@ -7,6 +7,13 @@ use gvd::scene::{Metric, Mode, Scene, Site, SiteKind};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::collections::BTreeSet;
 
+fn subdivision() -> gvd::Options {
+    gvd::Options {
+        engine: gvd::Engine::Subdivision,
+        ..Default::default()
+    }
+}
+
 struct Rng(u64);
 impl Rng {
     fn next(&mut self) -> f64 {
@@ -164,7 +171,7 @@ fn output_sets(d: &gvd::VoronoiComplex) -> (Vec<ExactVertex>, BTreeSet<[usize; 2
 }
 
 fn assert_matches(sc: &Scene, exact_v: &[ExactVertex], exact_pairs: &[([usize; 2], f64)]) {
-    let d = gvd::compute(sc, &gvd::Options::default()).unwrap();
+    let d = gvd::compute(sc, &subdivision()).unwrap();
     d.check_invariants().unwrap();
     let eps = sc.epsilon;
     let (out_v, out_pairs) = output_sets(&d);
@@ -313,7 +320,7 @@ fn random_power_points_match_brute_force() {
         1e-3,
     );
     let exact = power_reference(&pts, &w, &sc.domain);
-    let d = gvd::compute(&sc, &gvd::Options::default()).unwrap();
+    let d = gvd::compute(&sc, &subdivision()).unwrap();
     let (out_v, _) = output_sets(&d);
     for (p, s) in &exact {
         assert!(

@@ -3,7 +3,7 @@
 //! sequential one.
 
 use gvd::verify::{verify, VerifyOptions};
-use gvd::{compute, Options, Scene};
+use gvd::{compute, Engine, Options, Scene};
 use std::path::Path;
 
 fn scene(name: &str) -> Scene {
@@ -14,7 +14,11 @@ fn scene(name: &str) -> Scene {
 }
 
 fn check(name: &str, reference: &str) {
-    let d = compute(&scene(name), &Options::default()).unwrap();
+    let opts = Options {
+        engine: Engine::Subdivision,
+        ..Default::default()
+    };
+    let d = compute(&scene(name), &opts).unwrap();
     d.check_invariants().unwrap();
     let opts = VerifyOptions {
         grid: 256,
@@ -84,6 +88,7 @@ fn parallel_and_sequential_runs_agree() {
         let mut a = compute(
             &sc,
             &Options {
+                engine: Engine::Subdivision,
                 parallel: true,
                 ..Default::default()
             },
@@ -92,6 +97,7 @@ fn parallel_and_sequential_runs_agree() {
         let mut b = compute(
             &sc,
             &Options {
+                engine: Engine::Subdivision,
                 parallel: false,
                 ..Default::default()
             },

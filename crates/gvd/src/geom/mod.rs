@@ -1,5 +1,9 @@
 //! Plain geometric value types: points and axis-aligned boxes.
 
+mod nearest;
+
+pub use nearest::PointGrid;
+
 use crate::num::interval::Interval;
 use serde::{Deserialize, Serialize};
 use std::ops::{Add, Mul, Sub};

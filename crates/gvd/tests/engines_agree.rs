@@ -104,3 +104,16 @@ fn incremental_engine_refuses_other_sites_by_name() {
     .unwrap_err();
     assert!(err.to_string().contains("site 0"), "{err}");
 }
+
+#[test]
+fn empty_and_single_site_scenes_on_both_engines() {
+    for sites in ["[]", r#"[{"kind": "point", "at": [0.5, 0.5]}]"#] {
+        let sc =
+            Scene::from_json(&format!(r#"{{"domain": [0, 0, 1, 1], "sites": {sites}}}"#)).unwrap();
+        for engine in [Engine::Incremental, Engine::Subdivision] {
+            let d = run(&sc, engine);
+            assert!(d.vertices.is_empty() && d.edges.is_empty());
+            assert_eq!(d.cells.len(), sc.sites.len());
+        }
+    }
+}

@@ -99,8 +99,11 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
     let local_splits: u32 = outputs.iter().map(|o| o.local_splits).sum();
     let mut complex = assemble::assemble(outputs, 0.5 * eps, 0.125 * eps);
     let t_assemble = start.elapsed().as_secs_f64();
-    let locator = locate::Locator::new(fields, &leaves, params.domain);
-    complex.cells = crate::cells::build_cells(&complex, &params.domain, &|q| locator.nearest(q));
+    if !fields.is_empty() {
+        let locator = locate::Locator::new(fields, &leaves, params.domain);
+        complex.cells =
+            crate::cells::build_cells(&complex, &params.domain, &|q| locator.nearest(q));
+    }
 
     let spanning = leaves.iter().filter(|l| l.sites.len() >= 2).count();
     let stats = &mut complex.stats;

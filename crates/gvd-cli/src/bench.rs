@@ -51,10 +51,10 @@ const TABLE1: [(&str, [(f64, u64); 5]); 4] = [
 const SIZES: [usize; 5] = [50, 100, 200, 400, 800];
 
 /// A small deterministic generator (SplitMix64), so that every run draws the same sites.
-struct Rng(u64);
+pub struct Rng(pub u64);
 
 impl Rng {
-    fn next_f64(&mut self) -> f64 {
+    pub fn next_f64(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -62,7 +62,7 @@ impl Rng {
         z ^= z >> 31;
         (z >> 11) as f64 / (1u64 << 53) as f64
     }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.next_f64()
     }
 }
@@ -127,6 +127,26 @@ fn time(scene: &Scene, options: &gvd::Options, repeat: usize) -> (f64, u64) {
     (best, boxes)
 }
 
+/// Times one Table 1 row for every n and prints it beside the paper's figures.
+fn table1_rows(kind: &str, row: &[(f64, u64); 5], options: &gvd::Options, repeat: usize) {
+    for (k, &n) in SIZES.iter().enumerate() {
+        let scene = random_scene(kind, n, 1000 + n as u64);
+        let (secs, boxes) = time(&scene, options, repeat);
+        let (paper_s, paper_boxes) = row[k];
+        println!(
+            "{:<12} {:>5} | {:>9.4} {:>7.2} {:>7.0}x | {:>7} {:>7} {:>6.2}",
+            kind,
+            n,
+            secs,
+            paper_s,
+            paper_s / secs,
+            boxes,
+            paper_boxes,
+            boxes as f64 / paper_boxes as f64
+        );
+    }
+}
+
 pub fn emiris_table1(large: bool, repeat: usize) {
     let one_core = gvd::Options {
         engine: gvd::Engine::Subdivision,
@@ -140,23 +160,8 @@ pub fn emiris_table1(large: bool, repeat: usize) {
         "{:<12} {:>5} | {:>9} {:>7} {:>8} | {:>7} {:>7} {:>6}",
         "diagram", "n", "ours s", "paper s", "speed-up", "boxes", "paper", "ratio"
     );
-    for (kind, row) in TABLE1 {
-        for (k, &n) in SIZES.iter().enumerate() {
-            let scene = random_scene(kind, n, 1000 + n as u64);
-            let (secs, boxes) = time(&scene, &one_core, repeat);
-            let (paper_s, paper_boxes) = row[k];
-            println!(
-                "{:<12} {:>5} | {:>9.4} {:>7.2} {:>7.0}x | {:>7} {:>7} {:>6.2}",
-                kind,
-                n,
-                secs,
-                paper_s,
-                paper_s / secs,
-                boxes,
-                paper_boxes,
-                boxes as f64 / paper_boxes as f64
-            );
-        }
+    for (kind, row) in &TABLE1 {
+        table1_rows(kind, row, &one_core, repeat);
     }
     // the lp rows again through Bernstein forms, the representation the paper uses
     let bernstein = gvd::Options {
@@ -171,22 +176,7 @@ pub fn emiris_table1(large: bool, repeat: usize) {
         "lp metrics through their Bernstein forms (the paper's path) instead of the closed form:"
     );
     for (kind, row) in &TABLE1[2..] {
-        for (k, &n) in SIZES.iter().enumerate() {
-            let scene = random_scene(kind, n, 1000 + n as u64);
-            let (secs, boxes) = time(&scene, &bernstein, repeat);
-            let (paper_s, paper_boxes) = row[k];
-            println!(
-                "{:<12} {:>5} | {:>9.4} {:>7.2} {:>7.0}x | {:>7} {:>7} {:>6.2}",
-                kind,
-                n,
-                secs,
-                paper_s,
-                paper_s / secs,
-                boxes,
-                paper_boxes,
-                boxes as f64 / paper_boxes as f64
-            );
-        }
+        table1_rows(kind, row, &bernstein, repeat);
     }
     if large {
         let threads = rayon::current_num_threads();

@@ -1,27 +1,11 @@
 //! `gvd bench implicit`: circles (closed form and implicit path) and ellipses (implicit
 //! bounds) beside Euclidean point scenes of the same size, one core and all cores.
 
+use crate::bench::Rng;
 use gvd::geom::{Aabb, Point};
 use gvd::scene::{Metric, Mode, Scene, Site, SiteKind};
 use gvd::site::{FieldOptions, SiteField};
 use std::time::Instant;
-
-/// SplitMix64: deterministic scenes.
-struct Rng(u64);
-
-impl Rng {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-}
 
 fn scene(sites: Vec<SiteKind>) -> Scene {
     Scene {

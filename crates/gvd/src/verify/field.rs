@@ -507,6 +507,11 @@ fn real_roots(c: &[f64], lo: f64, hi: f64) -> Vec<f64> {
                 h = t;
             }
             let df = horner(&d, t);
+            // converged: keep t (the check must come before t moves, or a bisection
+            // step taken beside a converged Newton iterate would be returned)
+            if (f / df).abs() <= 1e-16 * t.abs() {
+                break;
+            }
             let nt = t - f / df;
             let (mn, mx) = (l.min(h), l.max(h));
             t = if df != 0.0 && nt > mn && nt < mx {
@@ -514,7 +519,7 @@ fn real_roots(c: &[f64], lo: f64, hi: f64) -> Vec<f64> {
             } else {
                 0.5 * (l + h)
             };
-            if (mx - mn) <= 1e-15 * mx.abs().max(1e-300) || (f / df).abs() <= 1e-16 * t.abs() {
+            if (mx - mn) <= 1e-15 * mx.abs().max(1e-300) {
                 break;
             }
         }
@@ -528,6 +533,26 @@ fn real_roots(c: &[f64], lo: f64, hi: f64) -> Vec<f64> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn cubic_root_is_not_a_bisection_midpoint() {
+        // z³ + z² = r²: this input once returned half the root (a bisection step taken
+        // after Newton had converged)
+        let c = [1.9970599999999998, 0.0, -1.0, -1.0];
+        let z = smallest_nonneg_root(&c);
+        assert!((c[0] - z * z - z * z * z).abs() < 1e-12, "{z}");
+    }
+
+    #[test]
+    fn dbg_cubic_root() {
+        let r2 = 1.997;
+        let z = smallest_nonneg_root(&[r2, 0.0, -1.0, -1.0]);
+        eprintln!("root {z} residual {}", r2 - z * z - z * z * z);
+        let g =
+            crate::num::poly::Poly::parse("(x-0.5)^2 + y^2 - z^2*(1+z)", &['x', 'y', 'z']).unwrap();
+        let c = z_coeffs(&g, Point::new(-0.876, -0.322));
+        eprintln!("coeffs {c:?} root {}", smallest_nonneg_root(&c));
+    }
+
     use super::*;
 
     #[test]

@@ -102,7 +102,7 @@ pub enum SiteField {
 #[derive(Clone, Debug)]
 pub enum FieldState {
     None,
-    Bernstein(Box<Bernstein2>),
+    Bernstein(Bernstein2),
     Implicit(Box<ImplicitState>),
 }
 
@@ -185,7 +185,7 @@ impl DistanceField for SiteField {
     fn state(&self, b: &Aabb) -> FieldState {
         match self {
             SiteField::Euclidean(_) | SiteField::Circle(_) | SiteField::Lp(_) => FieldState::None,
-            SiteField::Polynomial(f) => FieldState::Bernstein(Box::new(f.bernstein(b))),
+            SiteField::Polynomial(f) => FieldState::Bernstein(f.bernstein(b)),
             SiteField::Implicit(f) => FieldState::Implicit(Box::new(f.state(b))),
             SiteField::Ellipse(f) => FieldState::Implicit(Box::new(f.state(b))),
         }
@@ -196,8 +196,8 @@ impl DistanceField for SiteField {
             (SiteField::Polynomial(f), FieldState::Bernstein(bf)) => {
                 let (l, r) = f.split(bf, b, axis, at);
                 (
-                    FieldState::Bernstein(Box::new(l)),
-                    FieldState::Bernstein(Box::new(r)),
+                    FieldState::Bernstein(l),
+                    FieldState::Bernstein(r),
                 )
             }
             (SiteField::Implicit(f), FieldState::Implicit(st)) => {

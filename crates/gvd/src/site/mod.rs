@@ -195,10 +195,7 @@ impl DistanceField for SiteField {
         match (self, s) {
             (SiteField::Polynomial(f), FieldState::Bernstein(bf)) => {
                 let (l, r) = f.split(bf, b, axis, at);
-                (
-                    FieldState::Bernstein(l),
-                    FieldState::Bernstein(r),
-                )
+                (FieldState::Bernstein(l), FieldState::Bernstein(r))
             }
             (SiteField::Implicit(f), FieldState::Implicit(st)) => {
                 let (l, r) = f.split(st, b, axis, at);

@@ -6,7 +6,6 @@
 use crate::complex::VoronoiComplex;
 use crate::geom::{Aabb, Point};
 use crate::scene::{Scene, SiteKind};
-use std::f64::consts::TAU;
 use std::fmt::Write;
 
 /// Drawing options.
@@ -268,12 +267,7 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
                 start_angle,
                 end_angle,
             } => {
-                let d = end_angle - start_angle;
-                let sweep = if d >= TAU || (d != 0.0 && d.rem_euclid(TAU) == 0.0) {
-                    TAU
-                } else {
-                    d.rem_euclid(TAU)
-                };
+                let sweep = crate::scene::arc_sweep(*start_angle, *end_angle);
                 let pts: Vec<Point> = (0..=64)
                     .map(|k| {
                         let a = start_angle + sweep * k as f64 / 64.0;

@@ -116,6 +116,18 @@ impl SiteKind {
     }
 }
 
+/// The counter-clockwise angle an arc sweeps from `start_angle` to `end_angle`, in
+/// `(0, 2π]`: a nonzero whole number of turns is the full circle.
+pub fn arc_sweep(start_angle: f64, end_angle: f64) -> f64 {
+    let d = end_angle - start_angle;
+    let sweep = d.rem_euclid(std::f64::consts::TAU);
+    if d >= std::f64::consts::TAU || (sweep == 0.0 && d != 0.0) {
+        std::f64::consts::TAU
+    } else {
+        sweep
+    }
+}
+
 /// A site: its kind with its data, and the optional user id echoed in outputs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Site {

@@ -100,16 +100,12 @@ impl Field {
                         radius,
                         start_angle,
                         end_angle,
-                    } => {
-                        let d = end_angle - start_angle;
-                        let sweep = if d >= TAU { TAU } else { d.rem_euclid(TAU) };
-                        Field::Arc {
-                            c: *center,
-                            r: *radius,
-                            start: *start_angle,
-                            sweep: if sweep == 0.0 && d != 0.0 { TAU } else { sweep },
-                        }
-                    }
+                    } => Field::Arc {
+                        c: *center,
+                        r: *radius,
+                        start: *start_angle,
+                        sweep: crate::scene::arc_sweep(*start_angle, *end_angle),
+                    },
                     SiteKind::Ellipse {
                         center,
                         semi_axes,

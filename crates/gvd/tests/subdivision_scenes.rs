@@ -108,3 +108,33 @@ fn parallel_and_sequential_runs_agree() {
         assert_eq!(a, b, "{name}");
     }
 }
+
+#[test]
+fn epsilon_below_f64_resolution_is_floored_not_hung() {
+    // coordinates near 1e6 resolve about 1e-10: epsilon 1e-9 would ask for boxes of a
+    // few ulps; the engine floors the resolution (and says so in stats) instead
+    let sc = Scene::from_json(
+        r#"{"domain": [1e6, 1e6, 1.000004e6, 1.000004e6], "epsilon": 1e-9, "sites": [
+            {"kind": "point", "at": [1000001.0, 1000001.0], "metric": {"kind": "anisotropic", "matrix": [[2, 0.1], [0.1, 1]]}},
+            {"kind": "point", "at": [1000003.0, 1000002.5], "metric": {"kind": "lp", "p": 4}},
+            {"kind": "point", "at": [1000002.0, 1000003.5]}]}"#,
+    )
+    .unwrap();
+    let d = compute(&sc, &Options::default()).unwrap();
+    d.check_invariants().unwrap();
+    assert!(d.stats["resolution"].as_f64().unwrap() > 1e-9);
+    let coarse = Scene {
+        epsilon: 1e-4,
+        ..sc.clone()
+    };
+    let report = verify(
+        &coarse,
+        &d,
+        &VerifyOptions {
+            grid: 256,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}

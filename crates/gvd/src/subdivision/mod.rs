@@ -41,6 +41,17 @@ pub struct Output {
 pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
     let start = Instant::now();
     let eps = params.epsilon;
+    // lengths below a few hundred ulps of the coordinates cannot be resolved: floor the
+    // resolution there (an epsilon finer than f64 allows gives f64's best instead)
+    let d = &params.domain;
+    let magnitude = d
+        .min
+        .x
+        .abs()
+        .max(d.max.x.abs())
+        .max(d.min.y.abs())
+        .max(d.max.y.abs());
+    let eps = eps.max(1024.0 * f64::EPSILON * magnitude);
     let min_box = 0.5 * eps;
     let lattice = tree::Lattice::new(&params.domain, params.max_box);
     let tree_params = tree::Params {
@@ -116,6 +127,7 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
         json!(start.elapsed().as_secs_f64() - t_assemble),
     );
     stats.insert("engine".into(), json!("subdivision"));
+    stats.insert("resolution".into(), json!(eps));
     stats.insert("boxes".into(), json!(spanning));
     stats.insert("leaves".into(), json!(leaves.len()));
     stats.insert("uncertified_boxes".into(), json!(uncertified));

@@ -93,6 +93,23 @@ impl Mul<f64> for Point {
     }
 }
 
+/// The point of the closed segment `[a, b]` nearest to `q`.
+pub fn segment_foot(q: Point, a: Point, b: Point) -> Point {
+    let ab = b - a;
+    let l2 = ab.dot(ab);
+    let t = if l2 > 0.0 {
+        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    a.lerp(b, t)
+}
+
+/// The distance from `q` to the closed segment `[a, b]`.
+pub fn segment_distance(q: Point, a: Point, b: Point) -> f64 {
+    q.dist(segment_foot(q, a, b))
+}
+
 /// A coordinate axis.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
 pub enum Axis {

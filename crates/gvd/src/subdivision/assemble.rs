@@ -255,7 +255,7 @@ fn dp(points: &[Point], i: usize, j: usize, tol: f64, keep: &mut [bool]) {
         return;
     }
     let (a, b) = (points[i], points[j]);
-    let dist = |p: Point| super::trace::segment_distance(p, a, b);
+    let dist = |p: Point| crate::geom::segment_distance(p, a, b);
     let (k, worst) = (i + 1..j)
         .map(|k| (k, dist(points[k])))
         .fold((i + 1, -1.0), |acc, x| if x.1 > acc.1 { x } else { acc });

@@ -1,6 +1,6 @@
 //! Bisector tracing inside a box, and the Voronoi vertex solver.
 
-use crate::geom::{Aabb, Point};
+use crate::geom::{segment_distance, Aabb, Point};
 use crate::site::DistanceField;
 
 /// `f_a(q) − f_b(q)`.
@@ -269,16 +269,4 @@ pub fn illinois(
         }
     }
     0.5 * (lo + hi)
-}
-
-/// The distance from `r` to the segment `pq`.
-pub fn segment_distance(r: Point, p: Point, q: Point) -> f64 {
-    let d = q - p;
-    let l2 = d.dot(d);
-    let t = if l2 == 0.0 {
-        0.0
-    } else {
-        ((r - p).dot(d) / l2).clamp(0.0, 1.0)
-    };
-    r.dist(p + d * t)
 }

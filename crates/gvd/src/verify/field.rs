@@ -211,7 +211,7 @@ impl Field {
                 s * d.dot(d) - w
             }
             Field::Circle { c, r } => q.dist(c) - r,
-            Field::Segment { a, b } => q.dist(segment_foot(a, b, q)),
+            Field::Segment { a, b } => q.dist(crate::geom::segment_foot(q, a, b)),
             Field::Arc { .. } => q.dist(self.foot(q).unwrap_or(q)),
             Field::Ellipse { .. } if self.inside(q) => 0.0,
             Field::Ellipse { .. } => q.dist(self.foot(q).unwrap_or(q)),
@@ -281,7 +281,7 @@ impl Field {
                 let n = d.norm();
                 Some(if n > 0.0 { c + d * (r / n) } else { c })
             }
-            Field::Segment { a, b } => Some(segment_foot(a, b, q)),
+            Field::Segment { a, b } => Some(crate::geom::segment_foot(q, a, b)),
             Field::Arc { c, r, start, sweep } => {
                 let d = q - c;
                 let t = (d.y.atan2(d.x) - start).rem_euclid(TAU);
@@ -340,18 +340,6 @@ impl Field {
             _ => self.foot(q).map_or(f64::INFINITY, |f| q.dist(f)),
         }
     }
-}
-
-/// The point of the closed segment `[a, b]` nearest to `q`.
-fn segment_foot(a: Point, b: Point, q: Point) -> Point {
-    let ab = b - a;
-    let l2 = ab.dot(ab);
-    let t = if l2 > 0.0 {
-        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    a.lerp(b, t)
 }
 
 /// The nearest point of the axis-aligned ellipse `(x/a)² + (y/b)² = 1` to an outside

@@ -234,18 +234,6 @@ impl Buckets {
     }
 }
 
-/// The distance from `q` to the segment `[a, b]`.
-fn seg_dist(q: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let l2 = ab.dot(ab);
-    let t = if l2 > 0.0 {
-        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    q.dist(a.lerp(b, t))
-}
-
 fn finite(p: Point) -> bool {
     p.x.is_finite() && p.y.is_finite()
 }
@@ -734,14 +722,15 @@ impl<'a> Checker<'a> {
             let (x, a, b) = crossings[c];
             let key = (a.min(b), a.max(b));
             // a piece's midpoint lies within R + R/2 of x: at most 2 cells away
-            pb.around(x, 2)
-                .any(|p| pieces[p].2 == key && seg_dist(x, pieces[p].0, pieces[p].1) <= r)
-                || vb.around(x, 1).any(|v| {
-                    vat[v].dist(x) <= r
-                        && self.vgens[v]
-                            .as_ref()
-                            .is_some_and(|g| g.contains(&a) && g.contains(&b))
-                })
+            pb.around(x, 2).any(|p| {
+                pieces[p].2 == key
+                    && crate::geom::segment_distance(x, pieces[p].0, pieces[p].1) <= r
+            }) || vb.around(x, 1).any(|v| {
+                vat[v].dist(x) <= r
+                    && self.vgens[v]
+                        .as_ref()
+                        .is_some_and(|g| g.contains(&a) && g.contains(&b))
+            })
         });
         let mut missing: BTreeMap<(usize, usize), (usize, Point)> = BTreeMap::new();
         for (c, &ok) in covered.iter().enumerate() {

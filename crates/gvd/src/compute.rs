@@ -20,7 +20,8 @@ pub enum Engine {
     Auto,
     /// Subdivision over distance fields (Emiris et al. 2013): every supported site kind.
     Subdivision,
-    /// Topology-oriented incremental construction: Euclidean points.
+    /// Topology-oriented incremental construction: Euclidean points, segments,
+    /// polylines and polygons.
     Incremental,
 }
 
@@ -85,6 +86,20 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
                 boxes: Vec::new(),
             });
         }
+        (Engine::Auto | Engine::Incremental, None) if incremental::linear::supports(scene) => {
+            let start = std::time::Instant::now();
+            let mut complex = incremental::linear::linear_voronoi(scene)?;
+            let stats = &mut complex.stats;
+            stats.insert(
+                "seconds".into(),
+                serde_json::json!(start.elapsed().as_secs_f64()),
+            );
+            stats.insert("engine".into(), serde_json::json!("incremental"));
+            return Ok(Computation {
+                complex,
+                boxes: Vec::new(),
+            });
+        }
         (Engine::Incremental, None) => {
             let (site, kind) = scene
                 .sites
@@ -96,7 +111,9 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
                         SiteKind::Point {
                             metric: Metric::Euclidean,
                             ..
-                        }
+                        } | SiteKind::Segment { .. }
+                            | SiteKind::Polyline { .. }
+                            | SiteKind::Polygon { .. }
                     )
                 })
                 .map(|(i, s)| (i, s.kind.name().to_string()))
@@ -104,7 +121,7 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
             return Err(Error::Unsupported {
                 site,
                 kind,
-                message: "the incremental engine computes Euclidean points only (so far)".into(),
+                message: "the incremental engine computes Euclidean points, segments, polylines and polygons (so far)".into(),
             });
         }
         _ => {}

@@ -25,6 +25,16 @@ pub enum Error {
         kind: String,
         message: String,
     },
+    /// Two sites cross, overlap, or one touches the other's interior.
+    #[error("sites {site} and {other}: {message}")]
+    Conflict {
+        site: usize,
+        other: usize,
+        message: String,
+    },
+    /// An engine could not complete (a bug, reported instead of a wrong diagram).
+    #[error("internal error: {0}")]
+    Internal(String),
     /// A diagram file could not be read.
     #[error("diagram: {0}")]
     Diagram(String),

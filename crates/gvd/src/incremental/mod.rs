@@ -26,9 +26,11 @@
 
 mod graph;
 mod insert;
+pub mod linear;
 mod order;
 mod output;
 mod predicates;
+mod segments;
 
 use crate::complex::VoronoiComplex;
 use crate::geom::{Aabb, Point};

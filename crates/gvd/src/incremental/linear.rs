@@ -1,0 +1,431 @@
+//! Scenes of Euclidean points, segments, polylines and polygons through the segment
+//! engine: sites become point and segment generators, and the engine's raw graph
+//! becomes the [`VoronoiComplex`] of the scene's mode.
+//!
+//! * Generators: every distinct point (point sites, segment ends, chain corners) and
+//!   every segment, polyline edge and polygon edge of positive length.
+//! * Labels: in `voronoi` mode a generator is its site; in `complex` and
+//!   `medial_axis` modes a corner or an edge feature (a point site stays a site).
+//! * Edges between a corner and a segment ending there (the zone boundaries, or
+//!   separators) and edges between two parts of one site in `voronoi` mode are left
+//!   out; edges then run through the vertices that join only two labels. Edges inside
+//!   polygons are left out in `voronoi` and `complex` modes (the inside is part of the
+//!   site) and kept only there in `medial_axis` mode. Everything is clipped to the
+//!   domain.
+
+use super::segments::{find_conflict, Conflict, Gen, SegmentDiagram};
+use crate::complex::{Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
+use crate::geom::{Aabb, Point};
+use crate::scene::{Metric, Mode, Scene, SiteKind};
+use crate::Error;
+use std::collections::HashMap;
+
+/// Whether every site is a Euclidean point, a segment, a polyline or a polygon.
+pub fn supports(scene: &Scene) -> bool {
+    scene.sites.iter().all(|s| {
+        matches!(
+            s.kind,
+            SiteKind::Point {
+                metric: Metric::Euclidean,
+                ..
+            } | SiteKind::Segment { .. }
+                | SiteKind::Polyline { .. }
+                | SiteKind::Polygon { .. }
+        )
+    })
+}
+
+/// The generators of a scene and what they stand for.
+struct Generators {
+    points: Vec<Point>,
+    /// Per point generator: (site, corner index, or `None` for a point site).
+    point_owner: Vec<(usize, Option<usize>)>,
+    segments: Vec<[u32; 2]>,
+    /// Per segment generator: (site, edge index).
+    segment_owner: Vec<(usize, usize)>,
+    /// Point generators that are point sites and no segment's end.
+    lonely: Vec<u32>,
+    /// Closed rings of polygon sites (for insides).
+    rings: Vec<Vec<Point>>,
+}
+
+impl Generators {
+    fn of(scene: &Scene) -> Generators {
+        let mut g = Generators {
+            points: Vec::new(),
+            point_owner: Vec::new(),
+            segments: Vec::new(),
+            segment_owner: Vec::new(),
+            lonely: Vec::new(),
+            rings: Vec::new(),
+        };
+        let mut index: HashMap<(u64, u64), u32> = HashMap::new();
+        let mut point = |g: &mut Generators, p: Point, owner: (usize, Option<usize>)| {
+            // −0.0 and 0.0 are the same point.
+            let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+            *index.entry(key).or_insert_with(|| {
+                g.points.push(p);
+                g.point_owner.push(owner);
+                g.points.len() as u32 - 1
+            })
+        };
+        let mut chain = |g: &mut Generators, site: usize, corner0: usize, pts: &[Point], closed| {
+            let ids: Vec<u32> = pts
+                .iter()
+                .enumerate()
+                .map(|(k, &p)| point(g, p, (site, Some(corner0 + k))))
+                .collect();
+            let n = ids.len();
+            let edges = if closed { n } else { n - 1 };
+            for k in 0..edges {
+                let (a, b) = (ids[k], ids[(k + 1) % n]);
+                if a != b {
+                    g.segments.push([a, b]);
+                    g.segment_owner.push((site, corner0 + k));
+                }
+            }
+        };
+        let mut points_sites = Vec::new();
+        for (i, site) in scene.sites.iter().enumerate() {
+            match &site.kind {
+                SiteKind::Point { at, .. } => points_sites.push((i, *at)),
+                SiteKind::Segment { from, to } => chain(&mut g, i, 0, &[*from, *to], false),
+                SiteKind::Polyline { points } => chain(&mut g, i, 0, points, false),
+                SiteKind::Polygon { rings } => {
+                    let mut corner = 0;
+                    for ring in rings {
+                        chain(&mut g, i, corner, ring, true);
+                        corner += ring.len();
+                        g.rings.push(ring.clone());
+                    }
+                }
+                _ => {}
+            }
+        }
+        // Point sites last, so that a corner keeps its feature label; a point site on
+        // a corner is the same generator.
+        for (i, at) in points_sites {
+            let before = g.points.len();
+            let id = point(&mut g, at, (i, None));
+            if id as usize == before {
+                g.lonely.push(id);
+            }
+        }
+        g
+    }
+
+    fn point_label(&self, p: u32, mode: Mode) -> Generator {
+        let (site, corner) = self.point_owner[p as usize];
+        match (mode, corner) {
+            (Mode::Voronoi, _) | (_, None) => Generator::Site(site),
+            (_, Some(k)) => Generator::Feature {
+                site,
+                feature: FeatureKind::Corner,
+                index: k,
+            },
+        }
+    }
+
+    fn label(&self, g: Gen, mode: Mode) -> Generator {
+        match g {
+            Gen::Point(p) => self.point_label(p, mode),
+            Gen::Segment(s) => {
+                let (site, k) = self.segment_owner[s as usize];
+                match mode {
+                    Mode::Voronoi => Generator::Site(site),
+                    _ => Generator::Feature {
+                        site,
+                        feature: FeatureKind::Edge,
+                        index: k,
+                    },
+                }
+            }
+        }
+    }
+
+    /// Whether `a` and `b` are a segment and one of its own ends.
+    fn is_separator(&self, a: Gen, b: Gen) -> bool {
+        match (a, b) {
+            (Gen::Point(p), Gen::Segment(s)) | (Gen::Segment(s), Gen::Point(p)) => {
+                self.segments[s as usize].contains(&p)
+            }
+            _ => false,
+        }
+    }
+
+    /// Even-odd inside test against all polygon rings (boundary excluded).
+    fn inside_polygons(&self, q: Point) -> bool {
+        let mut inside = false;
+        for ring in &self.rings {
+            let n = ring.len();
+            for k in 0..n {
+                let (a, b) = (ring[k], ring[(k + 1) % n]);
+                if (a.y > q.y) != (b.y > q.y) {
+                    let x = a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                    if q.x < x {
+                        inside = !inside;
+                    }
+                }
+            }
+        }
+        inside
+    }
+}
+
+fn conflict_error(g: &Generators, c: Conflict) -> Error {
+    let seg_site = |s: usize| g.segment_owner[s].0;
+    let (a, b, what) = match c {
+        Conflict::Cross(i, j) => (seg_site(i), seg_site(j), "segments cross"),
+        Conflict::Overlap(i, j) => (seg_site(i), seg_site(j), "segments overlap"),
+        Conflict::Touch(i, j) => (
+            seg_site(i),
+            seg_site(j),
+            "an endpoint touches the inside of another segment (split it there)",
+        ),
+        Conflict::PointOn(i, p) => (
+            seg_site(i),
+            g.point_owner[p].0,
+            "a point lies inside a segment",
+        ),
+    };
+    let message = if a == b {
+        format!("{what} within site {a}")
+    } else {
+        what.to_string()
+    };
+    Error::Conflict {
+        site: a.min(b),
+        other: a.max(b),
+        message,
+    }
+}
+
+/// The diagram of a scene of Euclidean points, segments, polylines and polygons.
+pub fn linear_voronoi(scene: &Scene) -> Result<VoronoiComplex, Error> {
+    let g = Generators::of(scene);
+    if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely) {
+        return Err(conflict_error(&g, c));
+    }
+    let diagram = SegmentDiagram::new(&g.points, &g.segments, scene.domain)?;
+    let (vertices, edges) = diagram.raw(scene.epsilon / 4.0);
+    Ok(assemble(&g, scene, vertices, edges))
+}
+
+/// Union–find with path halving.
+fn find(parent: &mut [usize], mut v: usize) -> usize {
+    while parent[v] != v {
+        parent[v] = parent[parent[v]];
+        v = parent[v];
+    }
+    v
+}
+
+fn assemble(
+    g: &Generators,
+    scene: &Scene,
+    raw_vertices: Vec<super::segments::RawVertex>,
+    raw_edges: Vec<super::segments::RawEdge>,
+) -> VoronoiComplex {
+    let mode = scene.mode;
+    let nv = raw_vertices.len();
+    // Vertices joined by zero-length edges are one vertex.
+    let mut parent: Vec<usize> = (0..nv).collect();
+    let zero = |e: &super::segments::RawEdge| e.points.windows(2).all(|w| w[0] == w[1]);
+    for e in raw_edges.iter().filter(|e| zero(e)) {
+        let (a, b) = (find(&mut parent, e.ends[0]), find(&mut parent, e.ends[1]));
+        parent[a.max(b)] = a.min(b);
+    }
+    let mut labels: Vec<Vec<Generator>> = vec![Vec::new(); nv];
+    for (v, rv) in raw_vertices.iter().enumerate() {
+        let r = find(&mut parent, v);
+        for &gen in &rv.gens {
+            let l = g.label(gen, mode);
+            if !labels[r].contains(&l) {
+                labels[r].push(l);
+            }
+        }
+    }
+    // Kept edges: different labels, not a zone boundary, positive length.
+    struct Kept {
+        sites: [Generator; 2],
+        ends: [usize; 2],
+        points: Vec<Point>,
+    }
+    let mut kept: Vec<Kept> = Vec::new();
+    for e in raw_edges {
+        let [la, lb] = e.gens.map(|x| g.label(x, mode));
+        if la == lb || zero(&e) || (mode != Mode::Voronoi && g.is_separator(e.gens[0], e.gens[1]))
+        {
+            continue;
+        }
+        if mode == Mode::Voronoi && la.site() == lb.site() {
+            continue;
+        }
+        let ends = e.ends.map(|v| find(&mut parent, v));
+        kept.push(Kept {
+            sites: [la, lb],
+            ends,
+            points: e.points,
+        });
+    }
+    // Chain through vertices that join two labels and two kept edges.
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); nv];
+    for (k, e) in kept.iter().enumerate() {
+        incident[e.ends[0]].push(k);
+        incident[e.ends[1]].push(k);
+    }
+    let is_node = |v: usize| labels[v].len() >= 3 || incident[v].len() != 2;
+    let mut used = vec![false; kept.len()];
+    let mut chains: Vec<(Vec<Point>, Option<usize>, Option<usize>, [Generator; 2])> = Vec::new();
+    let walk = |start_edge: usize, from: usize, used: &mut Vec<bool>| {
+        let mut points: Vec<Point> = Vec::new();
+        let (mut e, mut v) = (start_edge, from);
+        loop {
+            used[e] = true;
+            let ed = &kept[e];
+            let forward = ed.ends[0] == v;
+            let mut pts = ed.points.clone();
+            if !forward {
+                pts.reverse();
+            }
+            if points.is_empty() {
+                points = pts;
+            } else {
+                points.extend_from_slice(&pts[1..]);
+            }
+            v = if forward { ed.ends[1] } else { ed.ends[0] };
+            if is_node(v) {
+                return (points, v, false);
+            }
+            match incident[v].iter().find(|&&k| !used[k]) {
+                Some(&k) => e = k,
+                None => return (points, v, true), // closed loop
+            }
+        }
+    };
+    for v in 0..nv {
+        if !is_node(v) {
+            continue;
+        }
+        for &k in &incident[v].clone() {
+            if used[k] {
+                continue;
+            }
+            let (points, end, _) = walk(k, v, &mut used);
+            chains.push((points, Some(v), Some(end), kept[k].sites));
+        }
+    }
+    for k in 0..kept.len() {
+        if !used[k] {
+            let start = kept[k].ends[0];
+            let (mut points, _, _) = walk(k, start, &mut used);
+            if points.first() != points.last() {
+                if let Some(&p) = points.first() {
+                    points.push(p);
+                }
+            }
+            chains.push((points, None, None, kept[k].sites));
+        }
+    }
+
+    // Insides of polygons, clipping, output indices.
+    let domain = scene.domain;
+    let mut out = VoronoiComplex::default();
+    let mut out_index: Vec<Option<usize>> = vec![None; nv];
+    let mut vertex_out = |v: usize, out: &mut VoronoiComplex| -> Option<usize> {
+        let at = raw_vertices[v].at;
+        if !domain.contains(at) {
+            return None;
+        }
+        Some(*out_index[v].get_or_insert_with(|| {
+            let mut sites = labels[v].clone();
+            sites.sort();
+            out.vertices.push(Vertex { at, sites });
+            out.vertices.len() - 1
+        }))
+    };
+    for (points, from, to, sites) in chains {
+        let mid = (points.len() - 1) / 2;
+        let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
+        if inside != (mode == Mode::MedialAxis) {
+            continue;
+        }
+        let closed_loop = from.is_none();
+        for (piece, start_cut, end_cut) in clip_polyline(&points, &domain) {
+            let from = if start_cut || closed_loop {
+                None
+            } else {
+                from.and_then(|v| vertex_out(v, &mut out))
+            };
+            let to = if end_cut || closed_loop {
+                None
+            } else {
+                to.and_then(|v| vertex_out(v, &mut out))
+            };
+            out.edges.push(Edge {
+                sites,
+                from,
+                to,
+                points: piece,
+            });
+        }
+    }
+    out
+}
+
+/// The pieces of a polyline inside the closed box `b`, each with whether its start and
+/// its end were cut by the box.
+fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool)> {
+    let mut pieces = Vec::new();
+    let mut cur: Vec<Point> = Vec::new();
+    let mut cur_cut = false;
+    for w in points.windows(2) {
+        let Some((t0, t1)) = clip_range(w[0], w[1], b) else {
+            if !cur.is_empty() {
+                pieces.push((std::mem::take(&mut cur), cur_cut, true));
+            }
+            continue;
+        };
+        let (p0, p1) = (w[0].lerp(w[1], t0), w[0].lerp(w[1], t1));
+        if cur.is_empty() {
+            cur.push(clamp(p0, b));
+            cur_cut = t0 > 0.0;
+        }
+        cur.push(clamp(p1, b));
+        if t1 < 1.0 {
+            pieces.push((std::mem::take(&mut cur), cur_cut, true));
+        }
+    }
+    if cur.len() >= 2 {
+        pieces.push((cur, cur_cut, false));
+    }
+    pieces.retain(|(p, _, _)| p.len() >= 2);
+    pieces
+}
+
+fn clamp(p: Point, b: &Aabb) -> Point {
+    Point::new(p.x.clamp(b.min.x, b.max.x), p.y.clamp(b.min.y, b.max.y))
+}
+
+/// Liang–Barsky: the parameter range of `a + t (b − a)`, `t ∈ [0, 1]`, inside `bx`.
+fn clip_range(a: Point, b: Point, bx: &Aabb) -> Option<(f64, f64)> {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (den, num) in [
+        (-d.x, a.x - bx.min.x),
+        (d.x, bx.max.x - a.x),
+        (-d.y, a.y - bx.min.y),
+        (d.y, bx.max.y - a.y),
+    ] {
+        if den == 0.0 {
+            if num < 0.0 {
+                return None;
+            }
+        } else if den < 0.0 {
+            t0 = t0.max(num / den);
+        } else {
+            t1 = t1.min(num / den);
+        }
+    }
+    (t0 <= t1).then_some((t0, t1))
+}

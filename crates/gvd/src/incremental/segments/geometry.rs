@@ -1,0 +1,226 @@
+//! Generators (points and open segments), their distances, and the bisector of two
+//! generators between two of its points, in offset-parameter form.
+//!
+//! Every bisector of points and segments is a line or a parabola (the wiki page's
+//! "line/line" and "point/line" forms). A point `x(u)` of the parabola of focus `p` and
+//! the line through `a` with unit direction `d` and unit normal `n` is, with
+//! `u = (x − a)·d` the foot parameter, `u_p = (p − a)·d` and `h_p = (p − a)·n ≠ 0`,
+//!
+//! ```text
+//! x(u) = a + u·d + σ·t(u)·n,   t(u) = ((u − u_p)² + h_p²) / (2|h_p|),   σ = sign h_p,
+//! ```
+//!
+//! where `t(u)` is the offset parameter (the clearance, equal distance to `p` and to the
+//! line). Lines (point/point, segment/segment, and the separator of a segment and its
+//! own endpoint) are straight between any two of their points.
+
+use crate::geom::Point;
+
+/// A generator of the segment diagram.
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+pub(crate) enum Gen {
+    /// A point: an input point or a segment endpoint (deduplicated), or one of the far
+    /// generators (index at least the number of real points).
+    Point(u32),
+    /// The open segment with this index.
+    Segment(u32),
+}
+
+/// A segment as its supporting line: `a + u·d` for `0 < u < len`, unit normal `n`
+/// (`d` turned counter-clockwise).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Line {
+    pub(crate) a: Point,
+    pub(crate) d: Point,
+    pub(crate) n: Point,
+    pub(crate) len: f64,
+    /// The endpoints' point generators.
+    pub(crate) ends: [u32; 2],
+}
+
+impl Line {
+    pub(crate) fn new(a: Point, b: Point, ends: [u32; 2]) -> Line {
+        let v = b - a;
+        let len = v.norm();
+        let d = v * (1.0 / len);
+        Line {
+            a,
+            d,
+            n: d.perp(),
+            len,
+            ends,
+        }
+    }
+
+    /// The foot parameter and signed offset of `x`.
+    #[inline]
+    pub(crate) fn coords(&self, x: Point) -> (f64, f64) {
+        let r = x - self.a;
+        (r.dot(self.d), r.dot(self.n))
+    }
+
+    /// Distance to the open segment: `|offset|` when the foot is strictly inside,
+    /// `+∞` otherwise (the endpoints are generators of their own).
+    #[inline]
+    pub(crate) fn open_distance(&self, x: Point) -> f64 {
+        let (u, h) = self.coords(x);
+        if u > 0.0 && u < self.len {
+            h.abs()
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Distance to the closed segment.
+    #[inline]
+    pub(crate) fn closed_distance(&self, x: Point) -> f64 {
+        let (u, h) = self.coords(x);
+        let du = if u < 0.0 {
+            -u
+        } else if u > self.len {
+            u - self.len
+        } else {
+            0.0
+        };
+        du.hypot(h)
+    }
+
+    pub(crate) fn at(&self, u: f64, h: f64) -> Point {
+        self.a + self.d * u + self.n * h
+    }
+}
+
+/// The shape of the bisector of two generators.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Bisector {
+    /// Straight between any two of its points; the clearance is the distance to the
+    /// point `p` when there is one, else to the line.
+    Straight { clearance: Clearance },
+    /// The parabola of focus `p` and directrix `line`, parametrized by the foot `u`.
+    Parabola { line: Line, up: f64, hp: f64 },
+}
+
+/// How to measure the clearance (common distance) of a point on a straight bisector.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Clearance {
+    Point(Point),
+    Line(Line),
+}
+
+impl Clearance {
+    fn at(&self, x: Point) -> f64 {
+        match self {
+            Clearance::Point(p) => x.dist(*p),
+            Clearance::Line(l) => l.coords(x).1.abs(),
+        }
+    }
+}
+
+impl Bisector {
+    /// The bisector of a point `p` and a generator `other` (point or segment `line`;
+    /// `p` an endpoint of the segment gives the straight separator).
+    pub(crate) fn of(p: Option<(u32, Point)>, line: Option<&Line>) -> Bisector {
+        match (p, line) {
+            (Some((id, p)), Some(l)) if !l.ends.contains(&id) => {
+                let (up, hp) = l.coords(p);
+                // A focus (numerically) on the directrix: the bisector inside the strip
+                // is degenerate; treat the piece between the vertices as straight.
+                if hp.abs() > 1e-12 * (l.len + up.abs()) {
+                    Bisector::Parabola { line: *l, up, hp }
+                } else {
+                    Bisector::Straight {
+                        clearance: Clearance::Point(p),
+                    }
+                }
+            }
+            (Some((_, p)), _) => Bisector::Straight {
+                clearance: Clearance::Point(p),
+            },
+            (None, Some(l)) => Bisector::Straight {
+                clearance: Clearance::Line(*l),
+            },
+            (None, None) => unreachable!("a bisector has at least one generator"),
+        }
+    }
+
+    /// The parameter of `x` on this bisector between `from` and `to`: for straight
+    /// bisectors `λ ∈ [0, 1]` along the chord, for parabolas the foot `u`.
+    fn param(&self, x: Point) -> f64 {
+        match self {
+            Bisector::Straight { .. } => unreachable!("straight bisectors use the chord"),
+            Bisector::Parabola { line, .. } => line.coords(x).0,
+        }
+    }
+
+    /// The point with parameter `s` between `from` and `to` (see [`param`]) and its
+    /// clearance.
+    fn point(&self, from: Point, to: Point, s: f64) -> (Point, f64) {
+        match self {
+            Bisector::Straight { clearance } => {
+                let x = from.lerp(to, s);
+                (x, clearance.at(x))
+            }
+            Bisector::Parabola { line, up, hp } => {
+                let t = ((s - up) * (s - up) + hp * hp) / (2.0 * hp.abs());
+                (line.at(s, t.copysign(*hp)), t)
+            }
+        }
+    }
+
+    fn range(&self, from: Point, to: Point) -> (f64, f64) {
+        match self {
+            Bisector::Straight { .. } => (0.0, 1.0),
+            Bisector::Parabola { .. } => (self.param(from), self.param(to)),
+        }
+    }
+
+    /// The point between `from` (where `f < 0`) and `to` where `f(x, clearance)`
+    /// changes sign, by bisection to full precision, with its clearance; `to` itself
+    /// when `f(to) < 0` too (rounding at a tie).
+    pub(crate) fn root(
+        &self,
+        from: Point,
+        to: Point,
+        f: impl Fn(Point, f64) -> f64,
+    ) -> (Point, f64) {
+        let (mut lo, mut hi) = self.range(from, to);
+        let end = self.point(from, to, hi);
+        if f(end.0, end.1) < 0.0 {
+            return end;
+        }
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            if mid == lo || mid == hi {
+                break;
+            }
+            let (x, t) = self.point(from, to, mid);
+            if f(x, t) < 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        self.point(from, to, 0.5 * (lo + hi))
+    }
+
+    /// A polyline from `from` to `to` within `tol` of the bisector.
+    pub(crate) fn polyline(&self, from: Point, to: Point, tol: f64) -> Vec<Point> {
+        match self {
+            Bisector::Straight { .. } => vec![from, to],
+            Bisector::Parabola { hp, .. } => {
+                let (u0, u1) = self.range(from, to);
+                // Chord sagitta over a step Δu is at most Δu²·κ/8 with curvature
+                // κ ≤ 1/|h_p|.
+                let step = (8.0 * tol * hp.abs()).sqrt();
+                let n = ((u1 - u0).abs() / step).ceil().clamp(1.0, 1e5) as usize;
+                let mut pts = Vec::with_capacity(n + 1);
+                pts.push(from);
+                for k in 1..n {
+                    pts.push(self.point(from, to, u0 + (u1 - u0) * k as f64 / n as f64).0);
+                }
+                pts.push(to);
+                pts
+            }
+        }
+    }
+}

@@ -1,0 +1,318 @@
+//! Insertion of one open segment into the diagram of its endpoints and the generators
+//! inserted before it (steps B1, B2, A2–A4 of the wiki page, with `H(v) = d(v, s) −
+//! t(v)` for the distance `d` to the open segment and the clearance `t` of `v`).
+//!
+//! * B1: the seed is the vertex of least `H` on the faces around the segment's first
+//!   endpoint (the endpoint's own face and those of segments already inserted there),
+//!   else around its other endpoint, else on the faces near them.
+//! * B2: `T` grows from the seed, most negative `H` first, by vertices with `H < 0`
+//!   that keep `T` a tree (C4: at most one edge to `T`) and keep every old face's
+//!   remainder connected (C5: on a face that already meets `T`, the vertex must be next
+//!   to a `T` vertex along that face). Vertices next to the vertex at infinity stay
+//!   out (they lie near the far generators, far outside the domain).
+//! * A2: on every edge from `T` to a vertex out of `T`, the new vertex is the point of
+//!   the edge's bisector where the clearance equals the distance to the (closed)
+//!   segment, found by bisection along the bisector's offset-parameter form.
+//! * A3, A4: on every old face that meets `T`, the chain of `T` vertices is replaced by
+//!   one new edge (the bisector of the face's generator and the segment); the twins of
+//!   the new edges form the segment's face; `T` and its edges are deleted.
+//!
+//! Every decision that shapes the graph is combinatorial, so the graph stays a valid
+//! planar map whatever the rounding; geometry near exact ties is within rounding.
+
+use super::geometry::{Bisector, Gen, Line};
+use super::graph::{Graph, GHOST, NONE};
+use crate::geom::Point;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// Why a segment could not be inserted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum InsertError {
+    /// No vertex near the endpoints is nearer to the segment than to its generators.
+    NoSeed,
+    /// The conflict tree does not meet an old face in one chain.
+    BrokenChain,
+}
+
+/// Vertex states during one insertion (stamped, so no clearing between insertions).
+#[derive(Default)]
+pub(crate) struct Scratch {
+    stamp: u32,
+    vertex_stamp: Vec<u32>,
+    vertex_in: Vec<bool>,
+    face_stamp: Vec<u32>,
+    face_in: Vec<u32>,
+    tree: Vec<u32>,
+}
+
+#[derive(PartialEq)]
+struct Candidate {
+    h: f64,
+    v: u32,
+}
+impl Eq for Candidate {}
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Candidate {
+    fn cmp(&self, o: &Self) -> Ordering {
+        // Max-heap on −H: the most negative H first.
+        o.h.total_cmp(&self.h).then(o.v.cmp(&self.v))
+    }
+}
+
+/// What the insertion needs to know of the generators.
+pub(crate) struct Sites<'a> {
+    pub(crate) points: &'a [Point],
+    pub(crate) lines: &'a [Line],
+    /// The segments inserted so far at each point generator.
+    pub(crate) at_point: &'a [Vec<u32>],
+    /// The face of each segment inserted so far (point generator `p`'s face is `p`).
+    pub(crate) face_of_segment: &'a [u32],
+}
+
+impl Sites<'_> {
+    pub(crate) fn bisector(&self, a: Gen, b: Gen) -> Bisector {
+        let point = |g: Gen| match g {
+            Gen::Point(i) => Some((i, self.points[i as usize])),
+            Gen::Segment(_) => None,
+        };
+        let line = |g: Gen| match g {
+            Gen::Segment(i) => Some(&self.lines[i as usize]),
+            Gen::Point(_) => None,
+        };
+        Bisector::of(point(a).or(point(b)), line(a).or(line(b)))
+    }
+}
+
+impl Scratch {
+    fn begin(&mut self, g: &Graph) {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.vertex_stamp.iter_mut().for_each(|s| *s = 0);
+            self.face_stamp.iter_mut().for_each(|s| *s = 0);
+            self.stamp = 1;
+        }
+        self.vertex_stamp.resize(g.vertices.len(), 0);
+        self.vertex_in.resize(g.vertices.len(), false);
+        self.face_stamp.resize(g.faces.len(), 0);
+        self.face_in.resize(g.faces.len(), 0);
+        self.tree.clear();
+    }
+
+    fn is_in(&self, v: u32) -> bool {
+        self.vertex_stamp[v as usize] == self.stamp && self.vertex_in[v as usize]
+    }
+
+    fn decided(&self, v: u32) -> bool {
+        self.vertex_stamp[v as usize] == self.stamp
+    }
+
+    fn decide(&mut self, v: u32, inside: bool) {
+        self.vertex_stamp[v as usize] = self.stamp;
+        self.vertex_in[v as usize] = inside;
+    }
+
+    fn face_count(&self, f: u32) -> u32 {
+        if self.face_stamp[f as usize] == self.stamp {
+            self.face_in[f as usize]
+        } else {
+            0
+        }
+    }
+
+    fn add_to_face(&mut self, f: u32) {
+        if self.face_stamp[f as usize] != self.stamp {
+            self.face_stamp[f as usize] = self.stamp;
+            self.face_in[f as usize] = 0;
+        }
+        self.face_in[f as usize] += 1;
+    }
+}
+
+/// Inserts segment `s` (its line `sites.lines[s]`); returns its new face.
+pub(crate) fn insert_segment(
+    g: &mut Graph,
+    sites: &Sites,
+    s: u32,
+    scratch: &mut Scratch,
+) -> Result<u32, InsertError> {
+    let line = sites.lines[s as usize];
+    let h = |g: &Graph, v: u32| -> f64 {
+        let vx = &g.vertices[v as usize];
+        if v == GHOST || !vx.alive {
+            return f64::INFINITY;
+        }
+        line.open_distance(vx.at) - vx.t
+    };
+    scratch.begin(g);
+
+    let seed = find_seed(g, sites, &line, &h).ok_or(InsertError::NoSeed)?;
+    grow_tree(g, seed, &h, scratch);
+
+    // A2: a new vertex on every edge leaving T.
+    let new_face = g.faces.len() as u32;
+    g.faces.push(super::graph::Face {
+        gen: Gen::Segment(s),
+        edge: NONE,
+    });
+    let target = |x: Point, t: f64| line.closed_distance(x) - t;
+    // (new vertex, the old half-edge now leaving it)
+    let mut splits: Vec<(u32, u32)> = Vec::new();
+    for &u in &scratch.tree {
+        for e in g.outgoing(u).collect::<Vec<_>>() {
+            let w = g.target(e);
+            if scratch.is_in(w) {
+                continue;
+            }
+            let left = g.edges[e as usize].face;
+            let right = g.edges[g.edges[e as usize].twin as usize].face;
+            let bis = sites.bisector(g.faces[left as usize].gen, g.faces[right as usize].gen);
+            let (from, to) = (g.vertices[u as usize].at, g.vertices[w as usize].at);
+            let (at, t) = bis.root(from, to, target);
+            let x = g.add_vertex(at, t);
+            // The old half-edge u → w becomes x → w.
+            g.edges[e as usize].origin = x;
+            g.vertices[x as usize].out = e;
+            splits.push((x, e));
+        }
+    }
+
+    // A3: per old face, the entry (T begins after it) and exit (T ends before it).
+    // At x on old edge e = x → w: e's left face L is left by T at x (exit), the right
+    // face R = face(twin e) is entered at x (entry).
+    let mut entry: Vec<(u32, u32)> = Vec::with_capacity(splits.len()); // (face, x-index)
+    let mut exit: Vec<(u32, u32)> = Vec::with_capacity(splits.len());
+    for (k, &(_, e)) in splits.iter().enumerate() {
+        let left = g.edges[e as usize].face;
+        let right = g.edges[g.edges[e as usize].twin as usize].face;
+        exit.push((left, k as u32));
+        entry.push((right, k as u32));
+    }
+    entry.sort_unstable();
+    exit.sort_unstable();
+    if entry.windows(2).any(|w| w[0].0 == w[1].0) || exit.windows(2).any(|w| w[0].0 == w[1].0)
+    {
+        return Err(InsertError::BrokenChain);
+    }
+    // The new edge of face F runs entry(F) → exit(F); remember each new edge's twin
+    // (on the segment's face) by its start, the exit vertex.
+    let mut twin_from_exit: Vec<u32> = vec![NONE; splits.len()];
+    let mut new_edges: Vec<(u32, usize, usize)> = Vec::with_capacity(splits.len());
+    for (&(f, a), &(f2, b)) in entry.iter().zip(exit.iter()) {
+        if f != f2 {
+            return Err(InsertError::BrokenChain);
+        }
+        let (xa, ea) = splits[a as usize];
+        let (xb, eb) = splits[b as usize];
+        let ne = g.add_edge(xa, xb, f, new_face);
+        // Face F: (w' → xa) then xa → xb then (xb → w).
+        let into_a = g.edges[ea as usize].twin;
+        g.link(into_a, ne);
+        g.link(ne, eb);
+        g.faces[f as usize].edge = ne;
+        twin_from_exit[b as usize] = ne + 1;
+        new_edges.push((ne, a as usize, b as usize));
+    }
+    // The segment's face: the twin xb → xa is followed by the twin leaving xa, i.e. the
+    // new edge whose exit vertex is xa.
+    for &(ne, a, _) in &new_edges {
+        let next = twin_from_exit[a];
+        if next == NONE {
+            return Err(InsertError::BrokenChain);
+        }
+        g.link(ne + 1, next);
+    }
+    g.faces[new_face as usize].edge = new_edges[0].0 + 1;
+
+    // A4: delete T.
+    for &u in &scratch.tree {
+        g.vertices[u as usize].alive = false;
+    }
+    Ok(new_face)
+}
+
+/// B1: the vertex of least `H < 0` on the faces around the endpoints.
+fn find_seed(g: &Graph, sites: &Sites, line: &Line, h: &impl Fn(&Graph, u32) -> f64) -> Option<u32> {
+    let mut best: Option<(f64, u32)> = None;
+    let consider = |f: u32, best: &mut Option<(f64, u32)>| {
+        for e in g.cycle(f) {
+            let v = g.edges[e as usize].origin;
+            let hv = h(g, v);
+            if hv < 0.0 && best.is_none_or(|(b, _)| hv < b) && !next_to_ghost(g, v) {
+                *best = Some((hv, v));
+            }
+        }
+    };
+    for &p in &line.ends {
+        consider(p, &mut best);
+        for &s in &sites.at_point[p as usize] {
+            consider(sites.face_of_segment[s as usize], &mut best);
+        }
+        if best.is_some() {
+            break;
+        }
+    }
+    best.map(|(_, v)| v)
+}
+
+fn next_to_ghost(g: &Graph, v: u32) -> bool {
+    g.outgoing(v).any(|e| g.target(e) == GHOST)
+}
+
+/// B2: grows `T` from `seed` under C4 and C5.
+fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scratch) {
+    let mut heap = BinaryHeap::new();
+    heap.push(Candidate {
+        h: h(g, seed),
+        v: seed,
+    });
+    while let Some(Candidate { h: hv, v }) = heap.pop() {
+        if sc.decided(v) {
+            continue;
+        }
+        let ok = v == seed || (hv < 0.0 && !next_to_ghost(g, v) && keeps_tree(g, v, sc));
+        sc.decide(v, ok);
+        if !ok {
+            continue;
+        }
+        sc.tree.push(v);
+        for e in g.outgoing(v) {
+            sc.add_to_face(g.edges[e as usize].face);
+            let w = g.target(e);
+            if !sc.decided(w) {
+                heap.push(Candidate { h: h(g, w), v: w });
+            }
+        }
+    }
+}
+
+/// C4 and C5 for adding `v` to `T`.
+fn keeps_tree(g: &Graph, v: u32, sc: &Scratch) -> bool {
+    let mut in_neighbours = 0;
+    for e in g.outgoing(v) {
+        if sc.is_in(g.target(e)) {
+            in_neighbours += 1;
+        }
+    }
+    if in_neighbours != 1 {
+        return false;
+    }
+    // C5: on each face around v that T already meets, v's neighbour along that face
+    // (before or after v) is in T.
+    for e in g.outgoing(v) {
+        let he = &g.edges[e as usize];
+        if sc.face_count(he.face) == 0 {
+            continue;
+        }
+        let after = g.target(e);
+        let before = g.edges[he.prev as usize].origin;
+        if !sc.is_in(after) && !sc.is_in(before) {
+            return false;
+        }
+    }
+    true
+}

@@ -1,0 +1,213 @@
+//! The topology-oriented incremental Voronoi diagram of points and line segments
+//! (Imai 1996; Held 2001; the OpenVoronoi wiki page).
+//!
+//! The generators are the points (isolated points and segment endpoints, deduplicated)
+//! and the open segments. Points go in first, through the exact point engine; then
+//! each open segment is inserted (`insert.rs`) into the general half-edge graph made
+//! from the points' graph (`graph.rs`). A segment's face is one face around both of
+//! its sides; it meets each endpoint's face along the endpoint's separator (the normal
+//! line through the endpoint), which is why the separators are bisectors like any
+//! other here. Bisectors are lines and parabolas in offset-parameter form
+//! (`geometry.rs`).
+//!
+//! Segments must not cross or overlap, and no endpoint or point may lie inside another
+//! segment (touching at shared endpoints is fine): [`SegmentDiagram::new`] refuses such
+//! input, naming the two segments (see `crossings.rs`).
+
+mod crossings;
+mod geometry;
+mod graph;
+mod insert;
+
+pub(crate) use crossings::{find_conflict, Conflict};
+pub(crate) use geometry::Gen;
+
+use super::PointDiagram;
+use crate::geom::{Aabb, Point};
+use crate::Error;
+use geometry::Line;
+use graph::{Graph, GHOST};
+use insert::{insert_segment, InsertError, Scratch, Sites};
+
+/// The diagram of points and non-crossing segments, as a general half-edge graph.
+pub(crate) struct SegmentDiagram {
+    graph: Graph,
+    /// Point generators in the point graph's order (scaled), far generators last.
+    points: Vec<Point>,
+    /// The caller's index of each point generator (`u32::MAX` for far ones).
+    point_id: Vec<u32>,
+    lines: Vec<Line>,
+    scale: f64,
+}
+
+/// An edge of the raw diagram: two generators, the polyline between two vertices.
+pub(crate) struct RawEdge {
+    pub(crate) gens: [Gen; 2],
+    pub(crate) ends: [usize; 2],
+    pub(crate) points: Vec<Point>,
+}
+
+/// A vertex of the raw diagram with the generators of the faces around it.
+pub(crate) struct RawVertex {
+    pub(crate) at: Point,
+    pub(crate) gens: Vec<Gen>,
+}
+
+impl SegmentDiagram {
+    /// The diagram of the distinct `points` and the `segments` between them (pairs of
+    /// point indices). The caller has checked that the segments do not cross.
+    pub(crate) fn new(
+        points: &[Point],
+        segments: &[[u32; 2]],
+        domain: Aabb,
+    ) -> Result<SegmentDiagram, Error> {
+        let pd = PointDiagram::new(points, domain)?;
+        let mut graph = Graph::from_points(&pd);
+        let n = points.len();
+        let mut face_of_point = vec![0u32; n];
+        let mut point_id = vec![u32::MAX; pd.pts.len()];
+        for (s, &i) in pd.input.iter().enumerate() {
+            face_of_point[i as usize] = s as u32;
+            point_id[s] = i;
+        }
+        let lines: Vec<Line> = segments
+            .iter()
+            .map(|&[a, b]| {
+                let (fa, fb) = (face_of_point[a as usize], face_of_point[b as usize]);
+                Line::new(pd.pts[fa as usize], pd.pts[fb as usize], [fa, fb])
+            })
+            .collect();
+        let mut at_point: Vec<Vec<u32>> = vec![Vec::new(); pd.pts.len()];
+        let mut face_of_segment = vec![u32::MAX; segments.len()];
+        let mut scratch = Scratch::default();
+        for s in insertion_order(segments.len()) {
+            let sites = Sites {
+                points: &pd.pts,
+                lines: &lines,
+                at_point: &at_point,
+                face_of_segment: &face_of_segment,
+            };
+            match insert_segment(&mut graph, &sites, s as u32, &mut scratch) {
+                Ok(f) => face_of_segment[s] = f,
+                Err(e) => {
+                    let why = match e {
+                        InsertError::NoSeed => "no Voronoi vertex nearer to it was found",
+                        InsertError::BrokenChain => "its conflict region was not a tree",
+                    };
+                    return Err(Error::Internal(format!(
+                        "segment generator {s} could not be inserted: {why}"
+                    )));
+                }
+            }
+            for &p in &lines[s].ends {
+                at_point[p as usize].push(s as u32);
+            }
+            #[cfg(debug_assertions)]
+            if let Err(e) = graph.check() {
+                return Err(Error::Internal(format!("after segment {s}: {e}")));
+            }
+        }
+        Ok(SegmentDiagram {
+            graph,
+            points: pd.pts.clone(),
+            point_id,
+            lines,
+            scale: pd.scale,
+        })
+    }
+
+    /// The generator as the caller numbers it: `Point(i)` is the caller's point `i`,
+    /// `Segment(j)` the caller's segment `j`; `None` for far generators.
+    fn caller_gen(&self, g: Gen) -> Option<Gen> {
+        match g {
+            Gen::Point(s) => {
+                let i = self.point_id[s as usize];
+                (i != u32::MAX).then_some(Gen::Point(i))
+            }
+            Gen::Segment(j) => Some(Gen::Segment(j)),
+        }
+    }
+
+    /// Every vertex and every edge between two real generators, unclipped, in input
+    /// coordinates, with polylines within `tol` of the bisectors.
+    pub(crate) fn raw(&self, tol: f64) -> (Vec<RawVertex>, Vec<RawEdge>) {
+        let g = &self.graph;
+        let inv = 1.0 / self.scale;
+        let mut index = vec![usize::MAX; g.vertices.len()];
+        let mut vertices = Vec::new();
+        for (v, vx) in g.vertices.iter().enumerate() {
+            if !vx.alive || v as u32 == GHOST {
+                continue;
+            }
+            let mut gens: Vec<Gen> = Vec::with_capacity(3);
+            let mut real = true;
+            for e in g.outgoing(v as u32) {
+                match self.caller_gen(g.faces[g.edges[e as usize].face as usize].gen) {
+                    Some(c) => {
+                        if !gens.contains(&c) {
+                            gens.push(c)
+                        }
+                    }
+                    None => real = false,
+                }
+            }
+            if real {
+                index[v] = vertices.len();
+                vertices.push(RawVertex {
+                    at: vx.at * inv,
+                    gens,
+                });
+            }
+        }
+        let sites = Sites {
+            points: &self.points,
+            lines: &self.lines,
+            at_point: &[],
+            face_of_segment: &[],
+        };
+        let mut edges = Vec::new();
+        for (h, he) in g.edges.iter().enumerate() {
+            let t = he.twin as usize;
+            if h > t {
+                continue;
+            }
+            let (a, b) = (he.origin as usize, g.edges[t].origin as usize);
+            if index[a] == usize::MAX || index[b] == usize::MAX {
+                continue;
+            }
+            let (fa, fb) = (he.face, g.edges[t].face);
+            let (ga, gb) = (g.faces[fa as usize].gen, g.faces[fb as usize].gen);
+            let (Some(ca), Some(cb)) = (self.caller_gen(ga), self.caller_gen(gb)) else {
+                continue;
+            };
+            let (pa, pb) = (g.vertices[a].at, g.vertices[b].at);
+            let points = sites
+                .bisector(ga, gb)
+                .polyline(pa, pb, tol * self.scale)
+                .into_iter()
+                .map(|p| p * inv)
+                .collect();
+            edges.push(RawEdge {
+                gens: [ca, cb],
+                ends: [index[a], index[b]],
+                points,
+            });
+        }
+        (vertices, edges)
+    }
+}
+
+/// A fixed pseudo-random permutation of `0..n` (insertion in random order keeps the
+/// expected conflict trees small).
+fn insertion_order(n: usize) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..n).collect();
+    let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
+    for i in (1..n).rev() {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let j = ((s >> 33) % (i as u64 + 1)) as usize;
+        order.swap(i, j);
+    }
+    order
+}

@@ -46,6 +46,22 @@ enum Command {
         #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
         engine: EngineArg,
     },
+    /// Offset curves (lines and arcs) at a distance from the sites, derived from the
+    /// diagram (in `complex` mode for a `voronoi` scene; inside the region in
+    /// `medial_axis` mode: a pocket).
+    Offset {
+        /// The scene (JSON, see SCENE_FORMAT.md).
+        scene: PathBuf,
+        /// The offset distance (finite, > 0).
+        #[arg(long, allow_negative_numbers = true)]
+        distance: f64,
+        /// Write the curves here (JSON, SCENE_FORMAT.md "Offsets").
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write a picture here (SVG): sites, faint diagram edges, offset curves.
+        #[arg(long)]
+        svg: Option<PathBuf>,
+    },
     /// Check a diagram against its scene by brute force (independent of the engines).
     Verify {
         scene: PathBuf,
@@ -147,6 +163,39 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     ..Default::default()
                 };
                 write_atomic(&path, &gvd::io::svg::render_svg(&sc, d, &opts))?;
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Offset {
+            scene,
+            distance,
+            json,
+            svg,
+        } => {
+            if json.is_none() && svg.is_none() {
+                bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
+            }
+            gvd::offset::check_distance(distance)?;
+            let sc = read_scene(&scene)?;
+            let (off, diagram) = gvd::offset::offset_scene(&sc, distance, &Default::default())
+                .with_context(|| format!("{}", scene.display()))?;
+            eprintln!(
+                "{}: offset at {distance}: {} curves ({} closed), {} primitives in {:.3} s",
+                scene.display(),
+                off.curves.len(),
+                off.curves.iter().filter(|c| c.closed).count(),
+                off.curves.iter().map(|c| c.primitives.len()).sum::<usize>(),
+                off.stats
+                    .get("seconds")
+                    .and_then(|v| v.as_f64())
+                    .unwrap_or(0.0)
+            );
+            if let Some(path) = json {
+                write_atomic(&path, &off.to_json())?;
+            }
+            if let Some(path) = svg {
+                let svg = gvd::io::svg::render_offset_svg(&sc, &diagram, &off, &Default::default());
+                write_atomic(&path, &svg)?;
             }
             Ok(ExitCode::SUCCESS)
         }

@@ -17,6 +17,7 @@ pub mod geom;
 pub mod incremental;
 pub mod io;
 pub mod num;
+pub mod offset;
 pub mod scene;
 pub mod site;
 pub mod subdivision;

@@ -1,10 +1,12 @@
-//! A small SVG writer: the domain frame, cells, edges, vertices and sites of a diagram,
-//! with `y` pointing up. Numbers are printed with a fixed number of decimals chosen from
-//! the domain size (about 6 significant digits, never in exponent notation), so the
-//! output is byte-identical across runs and platforms.
+//! A small SVG writer: the domain frame, cells, edges, vertices and sites of a diagram
+//! (and offset curves over them), with `y` pointing up. Numbers are printed with a
+//! fixed number of decimals chosen from the domain size (about 6 significant digits,
+//! never in exponent notation), so the output is byte-identical across runs and
+//! platforms.
 
 use crate::complex::VoronoiComplex;
 use crate::geom::{Aabb, Point};
+use crate::offset::{Curve, Offset, Primitive};
 use crate::scene::{Scene, SiteKind};
 use std::fmt::Write;
 
@@ -49,6 +51,16 @@ impl Fmt {
     /// `x,y` in SVG coordinates.
     fn pt(&self, p: Point) -> String {
         format!("{},{}", self.num(p.x), self.num(-p.y))
+    }
+    /// The attributes of a `rect` covering `b`.
+    fn rect(&self, b: Aabb) -> String {
+        format!(
+            "x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"",
+            self.num(b.min.x),
+            self.num(-b.max.y),
+            self.num(b.width()),
+            self.num(b.height())
+        )
     }
     /// A path through `points`, closed with `Z` if `close`.
     fn path(&self, d: &mut String, points: &[Point], close: bool) {
@@ -123,43 +135,8 @@ fn bezier_points(cp: &[Point], w: Option<&[f64]>, n: usize) -> Vec<Point> {
 
 /// Renders the diagram of `scene` as an SVG document.
 pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) -> String {
-    let dom = scene.domain;
-    let size = dom.longest_side();
-    let f = Fmt {
-        decimals: (5 - size.log10().floor() as i64).clamp(0, 15) as usize,
-    };
-    let margin = 0.03 * size;
-    let (vw, vh) = (dom.width() + 2.0 * margin, dom.height() + 2.0 * margin);
-    let (x0, y0) = (dom.min.x - margin, -(dom.max.y + margin));
+    let (mut s, f, size) = open_svg(scene, opts);
     let sw = |k: f64| f.num(k * size);
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"{} {} {} {}\">",
-        opts.width_px.round(),
-        (opts.width_px * vh / vw).round(),
-        f.num(x0),
-        f.num(y0),
-        f.num(vw),
-        f.num(vh)
-    );
-    let rect = |b: Aabb| {
-        format!(
-            "x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"",
-            f.num(b.min.x),
-            f.num(-b.max.y),
-            f.num(b.width()),
-            f.num(b.height())
-        )
-    };
-    let _ = writeln!(
-        s,
-        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\"/>",
-        f.num(x0),
-        f.num(y0),
-        f.num(vw),
-        f.num(vh)
-    );
     if !opts.boxes.is_empty() {
         let _ = writeln!(
             s,
@@ -167,7 +144,7 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
             sw(0.0008)
         );
         for &(b, n) in &opts.boxes {
-            let _ = writeln!(s, "<rect {} stroke=\"{}\"/>", rect(b), box_colour(n));
+            let _ = writeln!(s, "<rect {} stroke=\"{}\"/>", f.rect(b), box_colour(n));
         }
         s.push_str("</g>\n");
     }
@@ -182,22 +159,8 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
         }
         s.push_str("</g>\n");
     }
-    let _ = writeln!(
-        s,
-        "<rect id=\"domain\" {} fill=\"none\" stroke=\"#555555\" stroke-width=\"{}\"/>",
-        rect(dom),
-        sw(0.002)
-    );
-    let _ = writeln!(
-        s,
-        "<g id=\"edges\" fill=\"none\" stroke=\"#1a1a2e\" stroke-width=\"{}\" stroke-linejoin=\"round\" stroke-linecap=\"round\">",
-        sw(0.0025)
-    );
-    for e in &diagram.edges {
-        let pts: Vec<String> = e.points.iter().map(|&p| f.pt(p)).collect();
-        let _ = writeln!(s, "<polyline points=\"{}\"/>", pts.join(" "));
-    }
-    s.push_str("</g>\n");
+    write_domain(&mut s, scene, &f, size);
+    write_edges(&mut s, diagram, &f, "#1a1a2e", &sw(0.0025));
     write_sites(&mut s, scene, &f, size);
     let _ = writeln!(s, "<g id=\"vertices\" fill=\"#d32f2f\">");
     for v in &diagram.vertices {
@@ -211,6 +174,127 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
     }
     s.push_str("</g>\n</svg>\n");
     s
+}
+
+/// Renders offset curves over their scene: the sites, the diagram's edges drawn faintly
+/// and the curves as SVG lines and arcs (`A` commands, so arcs stay exact at any zoom);
+/// `opts.boxes` is not drawn.
+pub fn render_offset_svg(
+    scene: &Scene,
+    diagram: &VoronoiComplex,
+    offset: &Offset,
+    opts: &SvgOptions,
+) -> String {
+    let (mut s, f, size) = open_svg(scene, opts);
+    write_domain(&mut s, scene, &f, size);
+    write_edges(&mut s, diagram, &f, "#b0b0b8", &f.num(0.0015 * size));
+    write_sites(&mut s, scene, &f, size);
+    let _ = writeln!(
+        s,
+        "<g id=\"offsets\" fill=\"none\" stroke=\"#d81b60\" stroke-width=\"{}\" stroke-linejoin=\"round\" stroke-linecap=\"round\">",
+        f.num(0.003 * size)
+    );
+    for curve in &offset.curves {
+        let _ = writeln!(s, "<path d=\"{}\"/>", curve_path(&f, curve));
+    }
+    s.push_str("</g>\n</svg>\n");
+    s
+}
+
+/// An offset curve as path data: `M` at its start, `L` per line, `A` per arc (split into
+/// halves of at most a half turn, so that no arc's ends coincide), `Z` if closed.
+fn curve_path(f: &Fmt, curve: &Curve) -> String {
+    let mut d = String::new();
+    if let Some(first) = curve.primitives.first() {
+        d.push('M');
+        d.push_str(&f.pt(first.start()));
+    }
+    for prim in &curve.primitives {
+        match *prim {
+            Primitive::Line { to, .. } => {
+                d.push('L');
+                d.push_str(&f.pt(to));
+            }
+            Primitive::Arc {
+                start_angle,
+                end_angle,
+                radius,
+                ..
+            } => {
+                let halves = if end_angle - start_angle > std::f64::consts::PI {
+                    2
+                } else {
+                    1
+                };
+                for k in 1..=halves {
+                    // y is flipped, so counter-clockwise is the negative-angle sweep (0)
+                    let r = f.num(radius);
+                    let end = prim.point_at(k as f64 / halves as f64);
+                    let _ = write!(d, "A{r},{r} 0 0 0 {}", f.pt(end));
+                }
+            }
+        }
+    }
+    if curve.closed {
+        d.push('Z');
+    }
+    d
+}
+
+/// The SVG element with its view box, and the white background; the number format and
+/// the domain's longest side (line widths are fractions of it).
+fn open_svg(scene: &Scene, opts: &SvgOptions) -> (String, Fmt, f64) {
+    let dom = scene.domain;
+    let size = dom.longest_side();
+    let f = Fmt {
+        decimals: (5 - size.log10().floor() as i64).clamp(0, 15) as usize,
+    };
+    let margin = 0.03 * size;
+    let (vw, vh) = (dom.width() + 2.0 * margin, dom.height() + 2.0 * margin);
+    let (x0, y0) = (dom.min.x - margin, -(dom.max.y + margin));
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"{} {} {} {}\">",
+        opts.width_px.round(),
+        (opts.width_px * vh / vw).round(),
+        f.num(x0),
+        f.num(y0),
+        f.num(vw),
+        f.num(vh)
+    );
+    let _ = writeln!(
+        s,
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\"/>",
+        f.num(x0),
+        f.num(y0),
+        f.num(vw),
+        f.num(vh)
+    );
+    (s, f, size)
+}
+
+/// The domain's frame.
+fn write_domain(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
+    let _ = writeln!(
+        s,
+        "<rect id=\"domain\" {} fill=\"none\" stroke=\"#555555\" stroke-width=\"{}\"/>",
+        f.rect(scene.domain),
+        f.num(0.002 * size)
+    );
+}
+
+/// The diagram's edges as polylines of the given colour and width.
+fn write_edges(s: &mut String, diagram: &VoronoiComplex, f: &Fmt, colour: &str, width: &str) {
+    let _ = writeln!(
+        s,
+        "<g id=\"edges\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"{width}\" stroke-linejoin=\"round\" stroke-linecap=\"round\">"
+    );
+    for e in &diagram.edges {
+        let pts: Vec<String> = e.points.iter().map(|&p| f.pt(p)).collect();
+        let _ = writeln!(s, "<polyline points=\"{}\"/>", pts.join(" "));
+    }
+    s.push_str("</g>\n");
 }
 
 /// The sites: points as dots, circles and ellipses as outlines, curves as strokes;

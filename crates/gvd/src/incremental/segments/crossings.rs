@@ -80,7 +80,10 @@ pub(crate) fn find_conflict(
     if segments.is_empty() {
         return None;
     }
-    let (mut lo, mut hi) = (points[segments[0][0] as usize], points[segments[0][0] as usize]);
+    let (mut lo, mut hi) = (
+        points[segments[0][0] as usize],
+        points[segments[0][0] as usize],
+    );
     let mut total = 0.0;
     for &[a, b] in segments {
         for p in [points[a as usize], points[b as usize]] {
@@ -148,13 +151,36 @@ mod tests {
 
     #[test]
     fn finds_each_kind_of_conflict() {
-        let p = pts(&[(0., 0.), (2., 2.), (0., 2.), (2., 0.), (1., 1.), (3., 3.), (4., 0.)]);
-        assert_eq!(find_conflict(&p, &[[0, 1], [2, 3]], &[]), Some(Conflict::Cross(0, 1)));
-        assert_eq!(find_conflict(&p, &[[0, 1], [4, 5]], &[]), Some(Conflict::Overlap(0, 1)));
-        assert_eq!(find_conflict(&p, &[[0, 1], [4, 3]], &[]), Some(Conflict::Touch(0, 1)));
-        assert_eq!(find_conflict(&p, &[[0, 1]], &[4]), Some(Conflict::PointOn(0, 4)));
+        let p = pts(&[
+            (0., 0.),
+            (2., 2.),
+            (0., 2.),
+            (2., 0.),
+            (1., 1.),
+            (3., 3.),
+            (4., 0.),
+        ]);
+        assert_eq!(
+            find_conflict(&p, &[[0, 1], [2, 3]], &[]),
+            Some(Conflict::Cross(0, 1))
+        );
+        assert_eq!(
+            find_conflict(&p, &[[0, 1], [4, 5]], &[]),
+            Some(Conflict::Overlap(0, 1))
+        );
+        assert_eq!(
+            find_conflict(&p, &[[0, 1], [4, 3]], &[]),
+            Some(Conflict::Touch(0, 1))
+        );
+        assert_eq!(
+            find_conflict(&p, &[[0, 1]], &[4]),
+            Some(Conflict::PointOn(0, 4))
+        );
         // Shared endpoints, collinear neighbours and a point on the supporting line
         // beyond the segment are fine.
-        assert_eq!(find_conflict(&p, &[[0, 4], [4, 1], [0, 3], [3, 6]], &[5]), None);
+        assert_eq!(
+            find_conflict(&p, &[[0, 4], [4, 1], [0, 3], [3, 6]], &[5]),
+            None
+        );
     }
 }

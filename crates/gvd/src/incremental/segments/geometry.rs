@@ -71,18 +71,12 @@ impl Line {
         }
     }
 
-    /// Distance to the closed segment.
+    /// Whether `x`, at clearance `t` from its generators, is nearer to the open
+    /// segment (its foot strictly inside and `|offset| < t`).
     #[inline]
-    pub(crate) fn closed_distance(&self, x: Point) -> f64 {
+    pub(crate) fn claims(&self, x: Point, t: f64) -> bool {
         let (u, h) = self.coords(x);
-        let du = if u < 0.0 {
-            -u
-        } else if u > self.len {
-            u - self.len
-        } else {
-            0.0
-        };
-        du.hypot(h)
+        u > 0.0 && u < self.len && h.abs() < t
     }
 
     pub(crate) fn at(&self, u: f64, h: f64) -> Point {
@@ -174,18 +168,18 @@ impl Bisector {
         }
     }
 
-    /// The point between `from` (where `f < 0`) and `to` where `f(x, clearance)`
-    /// changes sign, by bisection to full precision, with its clearance; `to` itself
-    /// when `f(to) < 0` too (rounding at a tie).
-    pub(crate) fn root(
+    /// The last point of the bisector from `from` (inside the new region) towards
+    /// `to` that is still `inside`, by bisection to full precision, with its clearance;
+    /// `to` itself when `to` is inside too (rounding at a tie).
+    pub(crate) fn boundary(
         &self,
         from: Point,
         to: Point,
-        f: impl Fn(Point, f64) -> f64,
+        inside: impl Fn(Point, f64) -> bool,
     ) -> (Point, f64) {
         let (mut lo, mut hi) = self.range(from, to);
         let end = self.point(from, to, hi);
-        if f(end.0, end.1) < 0.0 {
+        if inside(end.0, end.1) {
             return end;
         }
         for _ in 0..80 {
@@ -194,7 +188,7 @@ impl Bisector {
                 break;
             }
             let (x, t) = self.point(from, to, mid);
-            if f(x, t) < 0.0 {
+            if inside(x, t) {
                 lo = mid;
             } else {
                 hi = mid;

@@ -204,8 +204,7 @@ impl Graph {
             }
         }
         for (v, vx) in self.vertices.iter().enumerate() {
-            if vx.alive && (vx.out == NONE || self.edges[vx.out as usize].origin as usize != v)
-            {
+            if vx.alive && (vx.out == NONE || self.edges[vx.out as usize].origin as usize != v) {
                 return Err(format!("vertex {v} has a wrong outgoing half-edge"));
             }
         }

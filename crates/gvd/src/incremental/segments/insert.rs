@@ -11,8 +11,10 @@
 //!   to a `T` vertex along that face). Vertices next to the vertex at infinity stay
 //!   out (they lie near the far generators, far outside the domain).
 //! * A2: on every edge from `T` to a vertex out of `T`, the new vertex is the point of
-//!   the edge's bisector where the clearance equals the distance to the (closed)
-//!   segment, found by bisection along the bisector's offset-parameter form.
+//!   the edge's bisector where it leaves the segment's region: where the clearance
+//!   equals the distance to the segment, or where the foot leaves the segment (the
+//!   endpoints' separators), found by bisection along the bisector's offset-parameter
+//!   form.
 //! * A3, A4: on every old face that meets `T`, the chain of `T` vertices is replaced by
 //!   one new edge (the bisector of the face's generator and the segment); the twins of
 //!   the new edges form the segment's face; `T` and its edges are deleted.
@@ -159,7 +161,7 @@ pub(crate) fn insert_segment(
         gen: Gen::Segment(s),
         edge: NONE,
     });
-    let target = |x: Point, t: f64| line.closed_distance(x) - t;
+    let inside = |x: Point, t: f64| line.claims(x, t);
     // (new vertex, the old half-edge now leaving it)
     let mut splits: Vec<(u32, u32)> = Vec::new();
     for &u in &scratch.tree {
@@ -172,7 +174,7 @@ pub(crate) fn insert_segment(
             let right = g.edges[g.edges[e as usize].twin as usize].face;
             let bis = sites.bisector(g.faces[left as usize].gen, g.faces[right as usize].gen);
             let (from, to) = (g.vertices[u as usize].at, g.vertices[w as usize].at);
-            let (at, t) = bis.root(from, to, target);
+            let (at, t) = bis.boundary(from, to, inside);
             let x = g.add_vertex(at, t);
             // The old half-edge u → w becomes x → w.
             g.edges[e as usize].origin = x;
@@ -194,8 +196,7 @@ pub(crate) fn insert_segment(
     }
     entry.sort_unstable();
     exit.sort_unstable();
-    if entry.windows(2).any(|w| w[0].0 == w[1].0) || exit.windows(2).any(|w| w[0].0 == w[1].0)
-    {
+    if entry.windows(2).any(|w| w[0].0 == w[1].0) || exit.windows(2).any(|w| w[0].0 == w[1].0) {
         return Err(InsertError::BrokenChain);
     }
     // The new edge of face F runs entry(F) → exit(F); remember each new edge's twin
@@ -236,7 +237,12 @@ pub(crate) fn insert_segment(
 }
 
 /// B1: the vertex of least `H < 0` on the faces around the endpoints.
-fn find_seed(g: &Graph, sites: &Sites, line: &Line, h: &impl Fn(&Graph, u32) -> f64) -> Option<u32> {
+fn find_seed(
+    g: &Graph,
+    sites: &Sites,
+    line: &Line,
+    h: &impl Fn(&Graph, u32) -> f64,
+) -> Option<u32> {
     let mut best: Option<(f64, u32)> = None;
     let consider = |f: u32, best: &mut Option<(f64, u32)>| {
         for e in g.cycle(f) {

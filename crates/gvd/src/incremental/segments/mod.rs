@@ -128,8 +128,9 @@ impl SegmentDiagram {
         }
     }
 
-    /// Every vertex and every edge between two real generators, unclipped, in input
-    /// coordinates, with polylines within `tol` of the bisectors.
+    /// Every finite vertex (with its real generators) and every edge between two real
+    /// generators, unclipped, in input coordinates, with polylines within `tol` of the
+    /// bisectors.
     pub(crate) fn raw(&self, tol: f64) -> (Vec<RawVertex>, Vec<RawEdge>) {
         let g = &self.graph;
         let inv = 1.0 / self.scale;
@@ -140,24 +141,17 @@ impl SegmentDiagram {
                 continue;
             }
             let mut gens: Vec<Gen> = Vec::with_capacity(3);
-            let mut real = true;
             for e in g.outgoing(v as u32) {
-                match self.caller_gen(g.faces[g.edges[e as usize].face as usize].gen) {
-                    Some(c) => {
-                        if !gens.contains(&c) {
-                            gens.push(c)
-                        }
-                    }
-                    None => real = false,
+                let gen = self.caller_gen(g.faces[g.edges[e as usize].face as usize].gen);
+                if let Some(c) = gen.filter(|c| !gens.contains(c)) {
+                    gens.push(c);
                 }
             }
-            if real {
-                index[v] = vertices.len();
-                vertices.push(RawVertex {
-                    at: vx.at * inv,
-                    gens,
-                });
-            }
+            index[v] = vertices.len();
+            vertices.push(RawVertex {
+                at: vx.at * inv,
+                gens,
+            });
         }
         let sites = Sites {
             points: &self.points,
@@ -210,4 +204,38 @@ fn insertion_order(n: usize) -> Vec<usize> {
         order.swap(i, j);
     }
     order
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn debug_two() {
+        let p = [
+            Point::new(-0.5, 0.1),
+            Point::new(0.7, 0.3),
+            Point::new(-0.3, -0.8),
+            Point::new(0.9, -0.5),
+        ];
+        let d = SegmentDiagram::new(
+            &p,
+            &[[0, 1], [2, 3]],
+            Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
+        )
+        .unwrap();
+        let (v, e) = d.raw(1e-3);
+        for (i, x) in v.iter().enumerate() {
+            eprintln!("V{i} {:?} {:?}", x.at, x.gens);
+        }
+        for x in &e {
+            eprintln!(
+                "E {:?} {:?} {:?} .. {:?}",
+                x.gens,
+                x.ends,
+                x.points[0],
+                x.points.last()
+            );
+        }
+    }
 }

@@ -254,7 +254,7 @@ fn assemble(
     let mut kept: Vec<Kept> = Vec::new();
     for e in raw_edges {
         let [la, lb] = e.gens.map(|x| g.label(x, mode));
-        if la == lb || zero(&e) || (mode != Mode::Voronoi && g.is_separator(e.gens[0], e.gens[1])) {
+        if la == lb || zero(&e) || g.is_separator(e.gens[0], e.gens[1]) {
             continue;
         }
         if mode == Mode::Voronoi && la.site() == lb.site() {

@@ -176,8 +176,8 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
     s
 }
 
-/// Renders offset curves over their scene: the sites, the diagram's edges drawn faintly
-/// and the curves as SVG lines and arcs (`A` commands, so arcs stay exact at any zoom);
+/// Renders offset curves over their scene: the sites, the diagram's edges drawn thin
+/// and grey over them, and the curves as SVG lines and arcs (`A` commands, so arcs stay exact at any zoom);
 /// `opts.boxes` is not drawn.
 pub fn render_offset_svg(
     scene: &Scene,
@@ -187,8 +187,9 @@ pub fn render_offset_svg(
 ) -> String {
     let (mut s, f, size) = open_svg(scene, opts);
     write_domain(&mut s, scene, &f, size);
-    write_edges(&mut s, diagram, &f, "#b0b0b8", &f.num(0.0015 * size));
+    // sites first: a polygon's fill would hide the edges inside it
     write_sites(&mut s, scene, &f, size);
+    write_edges(&mut s, diagram, &f, "#9a9aa6", &f.num(0.0012 * size));
     let _ = writeln!(
         s,
         "<g id=\"offsets\" fill=\"none\" stroke=\"#d81b60\" stroke-width=\"{}\" stroke-linejoin=\"round\" stroke-linecap=\"round\">",

@@ -84,14 +84,24 @@ impl Line {
     }
 }
 
+fn unit(v: Point) -> Point {
+    v * (1.0 / v.norm())
+}
+
 /// The shape of the bisector of two generators.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Bisector {
-    /// Straight between any two of its points; the clearance is the distance to the
-    /// point `p` when there is one, else to the line.
-    Straight { clearance: Clearance },
+    /// The line `origin + s·dir` (unit `dir`), parametrized by `s`.
+    Line {
+        origin: Point,
+        dir: Point,
+        clearance: Clearance,
+    },
     /// The parabola of focus `p` and directrix `line`, parametrized by the foot `u`.
     Parabola { line: Line, up: f64, hp: f64 },
+    /// A point on the line of a segment (outside it) and that segment: the bisector
+    /// has no piece where the segment is the nearer; kept straight between vertices.
+    Chord { clearance: Clearance },
 }
 
 /// How to measure the clearance (common distance) of a point on a straight bisector.
@@ -110,61 +120,108 @@ impl Clearance {
     }
 }
 
+/// A generator's geometry, for bisectors.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Shape<'a> {
+    Point(u32, Point),
+    Segment(&'a Line),
+}
+
 impl Bisector {
-    /// The bisector of a point `p` and a generator `other` (point or segment `line`;
-    /// `p` an endpoint of the segment gives the straight separator).
-    pub(crate) fn of(p: Option<(u32, Point)>, line: Option<&Line>) -> Bisector {
-        match (p, line) {
-            (Some((id, p)), Some(l)) if !l.ends.contains(&id) => {
+    /// The bisector of two generators; `near` (a point of the wanted piece) chooses
+    /// between the two angle bisectors of two segments' lines.
+    pub(crate) fn of(a: Shape, b: Shape, near: Point) -> Bisector {
+        match (a, b) {
+            (Shape::Point(_, p), Shape::Point(_, q)) => Bisector::Line {
+                origin: p.lerp(q, 0.5),
+                dir: unit((q - p).perp()),
+                clearance: Clearance::Point(p),
+            },
+            (Shape::Point(id, p), Shape::Segment(l)) | (Shape::Segment(l), Shape::Point(id, p)) => {
+                if l.ends.contains(&id) {
+                    // The separator: the normal through the endpoint.
+                    return Bisector::Line {
+                        origin: p,
+                        dir: l.n,
+                        clearance: Clearance::Point(p),
+                    };
+                }
                 let (up, hp) = l.coords(p);
-                // A focus (numerically) on the directrix: the bisector inside the strip
-                // is degenerate; treat the piece between the vertices as straight.
                 if hp.abs() > 1e-12 * (l.len + up.abs()) {
                     Bisector::Parabola { line: *l, up, hp }
                 } else {
-                    Bisector::Straight {
+                    Bisector::Chord {
                         clearance: Clearance::Point(p),
                     }
                 }
             }
-            (Some((_, p)), _) => Bisector::Straight {
-                clearance: Clearance::Point(p),
-            },
-            (None, Some(l)) => Bisector::Straight {
-                clearance: Clearance::Line(*l),
-            },
-            (None, None) => unreachable!("a bisector has at least one generator"),
+            (Shape::Segment(l1), Shape::Segment(l2)) => {
+                // Points with n1·(x − a1) = ±n2·(x − a2): the line with normal n1 ∓ n2
+                // through the lines' crossing (or midway, for parallel lines); take the
+                // one nearer to `near`.
+                let mut best: Option<(f64, Bisector)> = None;
+                for sign in [1.0, -1.0] {
+                    let normal = l1.n - l2.n * sign;
+                    let len = normal.norm();
+                    if len < 1e-9 {
+                        continue;
+                    }
+                    let normal = normal * (1.0 / len);
+                    let c = (l1.n.dot(l1.a) - sign * l2.n.dot(l2.a)) / len;
+                    let miss = (normal.dot(near) - c).abs();
+                    if best.as_ref().is_none_or(|(m, _)| miss < *m) {
+                        let line = Bisector::Line {
+                            origin: normal * c,
+                            dir: normal.perp(),
+                            clearance: Clearance::Line(*l1),
+                        };
+                        best = Some((miss, line));
+                    }
+                }
+                best.map(|(_, b)| b).unwrap_or(Bisector::Chord {
+                    clearance: Clearance::Line(*l1),
+                })
+            }
         }
     }
 
-    /// The parameter of `x` on this bisector between `from` and `to`: for straight
-    /// bisectors `λ ∈ [0, 1]` along the chord, for parabolas the foot `u`.
+    /// The parameter of `x`: along the line, or the foot `u` on the parabola's
+    /// directrix.
     fn param(&self, x: Point) -> f64 {
         match self {
-            Bisector::Straight { .. } => unreachable!("straight bisectors use the chord"),
+            Bisector::Line { origin, dir, .. } => (x - *origin).dot(*dir),
             Bisector::Parabola { line, .. } => line.coords(x).0,
+            Bisector::Chord { .. } => unreachable!("chords use the chord parameter"),
         }
     }
 
-    /// The point with parameter `s` between `from` and `to` (see [`param`]) and its
-    /// clearance.
+    /// The point with parameter `s` (see [`param`]; for chords `λ ∈ [0, 1]` from
+    /// `from` to `to`) and its clearance.
     fn point(&self, from: Point, to: Point, s: f64) -> (Point, f64) {
         match self {
-            Bisector::Straight { clearance } => {
-                let x = from.lerp(to, s);
+            Bisector::Line {
+                origin,
+                dir,
+                clearance,
+            } => {
+                let x = *origin + *dir * s;
                 (x, clearance.at(x))
             }
             Bisector::Parabola { line, up, hp } => {
                 let t = ((s - up) * (s - up) + hp * hp) / (2.0 * hp.abs());
                 (line.at(s, t.copysign(*hp)), t)
             }
+            Bisector::Chord { clearance } => {
+                let x = from.lerp(to, s);
+                (x, clearance.at(x))
+            }
         }
     }
 
     fn range(&self, from: Point, to: Point) -> (f64, f64) {
         match self {
-            Bisector::Straight { .. } => (0.0, 1.0),
-            Bisector::Parabola { .. } => (self.param(from), self.param(to)),
+            Bisector::Chord { .. } => (0.0, 1.0),
+            _ => (self.param(from), self.param(to)),
         }
     }
 
@@ -200,7 +257,7 @@ impl Bisector {
     /// A polyline from `from` to `to` within `tol` of the bisector.
     pub(crate) fn polyline(&self, from: Point, to: Point, tol: f64) -> Vec<Point> {
         match self {
-            Bisector::Straight { .. } => vec![from, to],
+            Bisector::Line { .. } | Bisector::Chord { .. } => vec![from, to],
             Bisector::Parabola { hp, .. } => {
                 let (u0, u1) = self.range(from, to);
                 // Chord sagitta over a step Δu is at most Δu²·κ/8 with curvature

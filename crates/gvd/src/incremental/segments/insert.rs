@@ -22,7 +22,7 @@
 //! Every decision that shapes the graph is combinatorial, so the graph stays a valid
 //! planar map whatever the rounding; geometry near exact ties is within rounding.
 
-use super::geometry::{Bisector, Gen, Line};
+use super::geometry::{Bisector, Gen, Line, Shape};
 use super::graph::{Graph, GHOST, NONE};
 use crate::geom::Point;
 use std::cmp::Ordering;
@@ -77,16 +77,16 @@ pub(crate) struct Sites<'a> {
 }
 
 impl Sites<'_> {
-    pub(crate) fn bisector(&self, a: Gen, b: Gen) -> Bisector {
-        let point = |g: Gen| match g {
-            Gen::Point(i) => Some((i, self.points[i as usize])),
-            Gen::Segment(_) => None,
-        };
-        let line = |g: Gen| match g {
-            Gen::Segment(i) => Some(&self.lines[i as usize]),
-            Gen::Point(_) => None,
-        };
-        Bisector::of(point(a).or(point(b)), line(a).or(line(b)))
+    /// The bisector of generators `a` and `b` through (or near) `near`.
+    pub(crate) fn bisector(&self, a: Gen, b: Gen, near: Point) -> Bisector {
+        Bisector::of(self.shape(a), self.shape(b), near)
+    }
+
+    fn shape(&self, g: Gen) -> Shape<'_> {
+        match g {
+            Gen::Point(i) => Shape::Point(i, self.points[i as usize]),
+            Gen::Segment(i) => Shape::Segment(&self.lines[i as usize]),
+        }
     }
 }
 
@@ -172,10 +172,14 @@ pub(crate) fn insert_segment(
             }
             let left = g.edges[e as usize].face;
             let right = g.edges[g.edges[e as usize].twin as usize].face;
-            let bis = sites.bisector(g.faces[left as usize].gen, g.faces[right as usize].gen);
             let (from, to) = (g.vertices[u as usize].at, g.vertices[w as usize].at);
+            let (gl, gr) = (g.faces[left as usize].gen, g.faces[right as usize].gen);
+            let bis = sites.bisector(gl, gr, from.lerp(to, 0.5));
             let (at, t) = bis.boundary(from, to, inside);
             let x = g.add_vertex(at, t);
+            if std::env::var("GVD_DEBUG").is_ok() {
+                eprintln!("seg {s} {:?}: new {x} on {u}->{w} ({:?}|{:?}) {:?} from {from:?} to {to:?}: {at:?} t={t}", line.ends, g.faces[left as usize].gen, g.faces[right as usize].gen, bis);
+            }
             // The old half-edge u → w becomes x → w.
             g.edges[e as usize].origin = x;
             g.vertices[x as usize].out = e;

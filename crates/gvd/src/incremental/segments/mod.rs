@@ -176,7 +176,7 @@ impl SegmentDiagram {
             };
             let (pa, pb) = (g.vertices[a].at, g.vertices[b].at);
             let points = sites
-                .bisector(ga, gb)
+                .bisector(ga, gb, pa.lerp(pb, 0.5))
                 .polyline(pa, pb, tol * self.scale)
                 .into_iter()
                 .map(|p| p * inv)
@@ -213,29 +213,17 @@ mod tests {
     #[test]
     fn debug_two() {
         let p = [
-            Point::new(-0.5, 0.1),
-            Point::new(0.7, 0.3),
-            Point::new(-0.3, -0.8),
-            Point::new(0.9, -0.5),
+            Point::new(-1.0, -0.8),
+            Point::new(1.2, -0.6),
+            Point::new(0.1, 1.1),
         ];
-        let d = SegmentDiagram::new(
-            &p,
-            &[[0, 1], [2, 3]],
-            Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
-        )
-        .unwrap();
+        let d = SegmentDiagram::new(&p, &[[0, 1], [1, 2], [2, 0]], Aabb::from_array([-2.0, -2.0, 2.0, 2.0])).unwrap();
         let (v, e) = d.raw(1e-3);
         for (i, x) in v.iter().enumerate() {
             eprintln!("V{i} {:?} {:?}", x.at, x.gens);
         }
         for x in &e {
-            eprintln!(
-                "E {:?} {:?} {:?} .. {:?}",
-                x.gens,
-                x.ends,
-                x.points[0],
-                x.points.last()
-            );
+            eprintln!("E {:?} {:?} {:?} .. {:?}", x.gens, x.ends, x.points[0], x.points.last());
         }
     }
 }

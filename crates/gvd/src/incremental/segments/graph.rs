@@ -211,3 +211,29 @@ impl Graph {
         Ok(())
     }
 }
+
+impl Graph {
+    /// Puts a vertex of degree two at `at` (clearance `t`) on the edge of `h`
+    /// (`a → b`): `h` becomes `a → x`, a new half-edge `x → b` follows it; returns `x`.
+    pub(crate) fn split_edge(&mut self, h: u32, at: Point, t: f64) -> u32 {
+        let x = self.add_vertex(at, t);
+        let tw = self.edges[h as usize].twin;
+        let b = self.edges[tw as usize].origin;
+        let (left, right) = (self.edges[h as usize].face, self.edges[tw as usize].face);
+        let h2 = self.add_edge(x, b, left, right);
+        let t2 = h2 + 1;
+        // Pair h ↔ tw (now x → a) and h2 ↔ t2.
+        self.edges[tw as usize].origin = x;
+        let after = self.edges[h as usize].next;
+        self.link(h2, after);
+        self.link(h, h2);
+        let before = self.edges[tw as usize].prev;
+        self.link(before, t2);
+        self.link(t2, tw);
+        self.vertices[x as usize].out = h2;
+        if self.vertices[b as usize].out == tw {
+            self.vertices[b as usize].out = t2;
+        }
+        x
+    }
+}

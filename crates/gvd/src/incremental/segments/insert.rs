@@ -150,10 +150,24 @@ pub(crate) fn insert_segment(
         }
         line.open_distance(vx.at) - vx.t
     };
+    // An endpoint without segments yet has a face around it whose vertices may all be
+    // claimed (a parabolic edge can wrap around behind it); a vertex behind it on its
+    // boundary, which the segment never claims, keeps T a tree.
+    let fresh = line.ends.map(|p| sites.at_point[p as usize].is_empty());
+    for (k, &p) in line.ends.iter().enumerate() {
+        if fresh[k] {
+            let behind = if k == 0 { line.d * -1.0 } else { line.d };
+            split_behind(g, sites, p, behind);
+            if std::env::var("GVD_DEBUG").is_ok() { eprintln!("seg {s}: split behind {p} -> vertex {}", g.vertices.len() - 1); }
+        }
+    }
     scratch.begin(g);
 
     let seed = find_seed(g, sites, &line, &h).ok_or(InsertError::NoSeed)?;
     grow_tree(g, seed, &h, scratch);
+    if std::env::var("GVD_DEBUG").is_ok() {
+        eprintln!("seg {s}: seed {seed} T = {:?}", scratch.tree.iter().map(|&v| (v, h(g, v), g.vertices[v as usize].at)).collect::<Vec<_>>());
+    }
 
     // A2: a new vertex on every edge leaving T.
     let new_face = g.faces.len() as u32;
@@ -233,11 +247,55 @@ pub(crate) fn insert_segment(
     }
     g.faces[new_face as usize].edge = new_edges[0].0 + 1;
 
+    // A fresh endpoint gets a vertex of its own, on its separator: later segments there
+    // never claim it.
+    for (k, &p) in line.ends.iter().enumerate() {
+        if fresh[k] {
+            if let Some(&(ne, _, _)) = new_edges.iter().find(|e| g.edges[e.0 as usize].face == p) {
+                g.split_edge(ne, sites.points[p as usize], 0.0);
+            } else if std::env::var("GVD_DEBUG").is_ok() {
+                eprintln!("seg {s}: fresh endpoint {p} has no new edge");
+            }
+        }
+    }
+
     // A4: delete T.
     for &u in &scratch.tree {
         g.vertices[u as usize].alive = false;
     }
     Ok(new_face)
+}
+
+/// Splits the boundary of point `p`'s face where the ray from `p` in direction `dir`
+/// leaves it (the face is star-shaped around `p`, so the ray meets one edge), unless
+/// a vertex lies on the ray already.
+fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
+    let c = sites.points[p as usize];
+    let phi = dir.y.atan2(dir.x);
+    let turn = |from: f64, to: f64| (to - from).rem_euclid(std::f64::consts::TAU);
+    let angle = |x: Point| (x.y - c.y).atan2(x.x - c.x);
+    let mut hit = None;
+    for e in g.cycle(p) {
+        let a = g.vertices[g.edges[e as usize].origin as usize].at;
+        let b = g.vertices[g.target(e) as usize].at;
+        let (ta, tb) = (angle(a), angle(b));
+        let (span, to_ray) = (turn(ta, tb), turn(ta, phi));
+        if to_ray == 0.0 {
+            return;
+        }
+        if to_ray < span {
+            hit = Some((e, a, b, ta, to_ray));
+            break;
+        }
+    }
+    let Some((e, a, b, ta, to_ray)) = hit else {
+        return;
+    };
+    let he = g.edges[e as usize];
+    let other = g.edges[he.twin as usize].face;
+    let bis = sites.bisector(Gen::Point(p), g.faces[other as usize].gen, a.lerp(b, 0.5));
+    let (at, t) = bis.boundary(a, b, |x, _| turn(ta, angle(x)) < to_ray);
+    g.split_edge(e, at, t);
 }
 
 /// B1: the vertex of least `H < 0` on the faces around the endpoints.
@@ -273,7 +331,9 @@ fn next_to_ghost(g: &Graph, v: u32) -> bool {
     g.outgoing(v).any(|e| g.target(e) == GHOST)
 }
 
-/// B2: grows `T` from `seed` under C4 and C5.
+/// B2: grows `T` from `seed` under C4 and C5. A vertex that fails C5 stays undecided:
+/// it is tried again when a neighbour joins `T` (the vertices of `T` are taken most
+/// negative `H` first, which need not be the order in which a face's chain grows).
 fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scratch) {
     let mut heap = BinaryHeap::new();
     heap.push(Candidate {
@@ -284,11 +344,27 @@ fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scr
         if sc.decided(v) {
             continue;
         }
-        let ok = v == seed || (hv < 0.0 && !next_to_ghost(g, v) && keeps_tree(g, v, sc));
-        sc.decide(v, ok);
-        if !ok {
-            continue;
+        if v != seed {
+            if !(hv < 0.0) || next_to_ghost(g, v) {
+                sc.decide(v, false);
+                continue;
+            }
+            let tt = tree_test(g, v, sc);
+            if std::env::var("GVD_DEBUG").is_ok() {
+                eprintln!("  test {v} h={hv} -> {}", match tt { TreeTest::Ok => "ok", TreeTest::Cycle => "cycle", TreeTest::SplitsFace => "splits" });
+                if matches!(tt, TreeTest::SplitsFace) { for e in g.outgoing(v) { let f = g.edges[e as usize].face; if sc.face_count(f) > 0 { eprintln!("   face {f} cycle: {:?}", g.cycle(f).map(|c| { let o = g.edges[c as usize].origin; (o, sc.is_in(o), g.vertices[o as usize].at, g.vertices[o as usize].t) }).collect::<Vec<_>>()); } } }
+                for e in g.outgoing(v) { let he = &g.edges[e as usize]; eprintln!("     out {e} -> {} in={} face {} {:?} facecount {}", g.target(e), sc.is_in(g.target(e)), he.face, g.faces[he.face as usize].gen, sc.face_count(he.face)); }
+            }
+            match tt {
+                TreeTest::Cycle => {
+                    sc.decide(v, false);
+                    continue;
+                }
+                TreeTest::SplitsFace => continue,
+                TreeTest::Ok => {}
+            }
         }
+        sc.decide(v, true);
         sc.tree.push(v);
         for e in g.outgoing(v) {
             sc.add_to_face(g.edges[e as usize].face);
@@ -300,16 +376,24 @@ fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scr
     }
 }
 
+enum TreeTest {
+    Ok,
+    /// C4 fails: `v` has two or more edges to `T`.
+    Cycle,
+    /// C5 fails: on some face `v` is not next to the face's `T` chain.
+    SplitsFace,
+}
+
 /// C4 and C5 for adding `v` to `T`.
-fn keeps_tree(g: &Graph, v: u32, sc: &Scratch) -> bool {
+fn tree_test(g: &Graph, v: u32, sc: &Scratch) -> TreeTest {
     let mut in_neighbours = 0;
     for e in g.outgoing(v) {
         if sc.is_in(g.target(e)) {
             in_neighbours += 1;
         }
     }
-    if in_neighbours != 1 {
-        return false;
+    if in_neighbours > 1 {
+        return TreeTest::Cycle;
     }
     // C5: on each face around v that T already meets, v's neighbour along that face
     // (before or after v) is in T.
@@ -321,8 +405,8 @@ fn keeps_tree(g: &Graph, v: u32, sc: &Scratch) -> bool {
         let after = g.target(e);
         let before = g.edges[he.prev as usize].origin;
         if !sc.is_in(after) && !sc.is_in(before) {
-            return false;
+            return TreeTest::SplitsFace;
         }
     }
-    true
+    TreeTest::Ok
 }

@@ -106,6 +106,9 @@ impl SegmentDiagram {
             if let Err(e) = graph.check() {
                 return Err(Error::Internal(format!("after segment {s}: {e}")));
             }
+            if std::env::var("GVD_DEBUG").is_ok() {
+                debug_vertices(&graph, &pd.pts, &lines, &face_of_segment, s);
+            }
         }
         Ok(SegmentDiagram {
             graph,
@@ -188,6 +191,34 @@ impl SegmentDiagram {
             });
         }
         (vertices, edges)
+    }
+}
+
+fn debug_vertices(g: &Graph, pts: &[Point], lines: &[Line], inserted: &[u32], s: usize) {
+    for (v, vx) in g.vertices.iter().enumerate() {
+        if !vx.alive || v == 0 {
+            continue;
+        }
+        let mut near = f64::INFINITY;
+        for p in pts {
+            near = near.min(vx.at.dist(*p));
+        }
+        for (k, l) in lines.iter().enumerate() {
+            if inserted[k] != u32::MAX {
+                near = near.min(l.closed_distance(vx.at));
+            }
+        }
+        let mut spread: f64 = 0.0;
+        for e in g.outgoing(v as u32) {
+            let d = match g.faces[g.edges[e as usize].face as usize].gen {
+                Gen::Point(i) => vx.at.dist(pts[i as usize]),
+                Gen::Segment(i) => lines[i as usize].closed_distance(vx.at),
+            };
+            spread = spread.max((d - vx.t).abs());
+        }
+        if spread > 1e-9 * (1.0 + vx.t) || near < vx.t - 1e-9 * (1.0 + vx.t) {
+            eprintln!("after seg {s}: vertex {v} at {:?} t={} spread={spread} nearest={near}", vx.at, vx.t);
+        }
     }
 }
 

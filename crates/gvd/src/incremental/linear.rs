@@ -343,7 +343,25 @@ fn assemble(
             out.vertices.len() - 1
         }))
     };
-    for (points, from, to, sites) in chains {
+    // Where an edge ends on a site (a corner), the two distance fields are not
+    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
+    let hair = 1e-9 * domain.longest_side();
+    let pull = |points: &mut Vec<Point>, at_start: bool| {
+        let n = points.len();
+        let (end, next) = if at_start { (0, 1) } else { (n - 1, n - 2) };
+        let (p, q) = (points[end], points[next]);
+        let len = p.dist(q);
+        if len > 0.0 {
+            points[end] = p.lerp(q, (hair / len).min(0.5));
+        }
+    };
+    for (mut points, from, to, sites) in chains {
+        if from.is_some_and(|v| raw_vertices[v].t <= hair) {
+            pull(&mut points, true);
+        }
+        if to.is_some_and(|v| raw_vertices[v].t <= hair) {
+            pull(&mut points, false);
+        }
         let mid = (points.len() - 1) / 2;
         let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
         if inside != (mode == Mode::MedialAxis) {

@@ -298,13 +298,10 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
     g.split_edge(e, at, t);
 }
 
-/// B1: the vertex of least `H < 0` on the faces around the endpoints.
-fn find_seed(
-    g: &Graph,
-    sites: &Sites,
-    line: &Line,
-    h: &impl Fn(&Graph, u32) -> f64,
-) -> Option<u32> {
+/// B1: the vertex of least `H < 0` on the faces around the endpoints; failing that
+/// (rounding at a near tie), on the faces reached from them across edges, nearest
+/// faces first, up to a bound.
+fn find_seed(g: &Graph, sites: &Sites, line: &Line, h: &impl Fn(&Graph, u32) -> f64) -> Option<u32> {
     let mut best: Option<(f64, u32)> = None;
     let consider = |f: u32, best: &mut Option<(f64, u32)>| {
         for e in g.cycle(f) {
@@ -315,10 +312,29 @@ fn find_seed(
             }
         }
     };
+    let mut start: Vec<u32> = Vec::new();
     for &p in &line.ends {
-        consider(p, &mut best);
-        for &s in &sites.at_point[p as usize] {
-            consider(sites.face_of_segment[s as usize], &mut best);
+        start.push(p);
+        start.extend(sites.at_point[p as usize].iter().map(|&s| sites.face_of_segment[s as usize]));
+    }
+    for &f in &start {
+        consider(f, &mut best);
+    }
+    if best.is_some() {
+        return best.map(|(_, v)| v);
+    }
+    let mut seen: std::collections::HashSet<u32> = start.iter().copied().collect();
+    let mut queue: std::collections::VecDeque<u32> = start.into();
+    while let Some(f) = queue.pop_front() {
+        if seen.len() > 4096 {
+            break;
+        }
+        for e in g.cycle(f).collect::<Vec<_>>() {
+            let other = g.edges[g.edges[e as usize].twin as usize].face;
+            if seen.insert(other) {
+                consider(other, &mut best);
+                queue.push_back(other);
+            }
         }
         if best.is_some() {
             break;

@@ -50,6 +50,8 @@ pub(crate) struct RawEdge {
 /// A vertex of the raw diagram with the generators of the faces around it.
 pub(crate) struct RawVertex {
     pub(crate) at: Point,
+    /// Clearance: 0 for a vertex on a site (a segment endpoint).
+    pub(crate) t: f64,
     pub(crate) gens: Vec<Gen>,
 }
 
@@ -153,6 +155,7 @@ impl SegmentDiagram {
             index[v] = vertices.len();
             vertices.push(RawVertex {
                 at: vx.at * inv,
+                t: vx.t * inv,
                 gens,
             });
         }

@@ -105,3 +105,58 @@ fn refusal_names_the_site_and_field() {
     assert!(!out.status.success());
     assert!(err.contains("site 1") && err.contains("metric.p"), "{err}");
 }
+
+#[test]
+fn offset_writes_curves_and_a_picture() {
+    let scene = repo("examples/scenes/points-euclidean-0200.json");
+    let (json, svg) = (scratch("offset.json"), scratch("offset.svg"));
+    let out = gvd()
+        .args(["offset", scene.to_str().unwrap(), "--distance", "0.1"])
+        .args([
+            "--json",
+            json.to_str().unwrap(),
+            "--svg",
+            svg.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let off: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(off["distance"], 0.1);
+    let curves = off["curves"].as_array().unwrap();
+    assert!(!curves.is_empty());
+    for c in curves {
+        assert!(c["closed"].is_boolean());
+        for p in c["primitives"].as_array().unwrap() {
+            match p["kind"].as_str().unwrap() {
+                "arc" => assert_eq!(p["radius"], 0.1),
+                "line" => assert!(p["from"].is_array() && p["to"].is_array()),
+                other => panic!("{other}"),
+            }
+        }
+    }
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    assert!(picture.contains("<g id=\"offsets\"") && picture.contains(" 0 0 0 "));
+}
+
+#[test]
+fn offset_refuses_bad_distances_and_writes_nothing() {
+    let scene = repo("examples/scenes/points-euclidean-0200.json");
+    for d in ["0", "-0.5", "nan", "inf"] {
+        let target = scratch(&format!("offset-bad-{d}.json"));
+        let out = gvd()
+            .args(["offset", scene.to_str().unwrap(), "--distance", d])
+            .args(["--json", target.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{d}: {err}");
+        assert!(err.contains("distance"), "{d}: {err}");
+        assert!(!target.exists(), "{d} left an output file");
+    }
+}

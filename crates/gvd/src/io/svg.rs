@@ -177,8 +177,8 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
 }
 
 /// Renders offset curves over their scene: the sites, the diagram's edges drawn thin
-/// and grey over them, and the curves as SVG lines and arcs (`A` commands, so arcs stay exact at any zoom);
-/// `opts.boxes` is not drawn.
+/// and grey over them, and the curves as SVG lines and arcs (`A` commands, so arcs stay
+/// exact at any zoom); `opts.boxes` is not drawn.
 pub fn render_offset_svg(
     scene: &Scene,
     diagram: &VoronoiComplex,

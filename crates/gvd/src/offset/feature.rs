@@ -1,0 +1,244 @@
+//! The scene's features — point sites, corners and edges — with their exact Euclidean
+//! distances, the generators that name them, the regions polygons bound, and a uniform
+//! grid that finds the features near a point.
+
+use crate::complex::{FeatureKind, Generator};
+use crate::error::Error;
+use crate::geom::{segment_distance, Aabb, Point};
+use crate::scene::{Metric, Scene, SiteKind};
+use std::ops::Range;
+
+/// One feature: a point (a point site or a corner) or a closed edge `[a, b]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Shape {
+    Point(Point),
+    /// An edge with the indices of the corner features at `a` and at `b`.
+    Edge {
+        a: Point,
+        b: Point,
+        corners: [usize; 2],
+    },
+}
+
+impl Shape {
+    /// The Euclidean distance from `q` to the closed feature: `|q − p|` for a point,
+    /// `|q − foot|` for an edge, the foot clamped to `[a, b]`.
+    pub(super) fn distance(&self, q: Point) -> f64 {
+        match *self {
+            Shape::Point(p) => q.dist(p),
+            Shape::Edge { a, b, .. } => segment_distance(q, a, b),
+        }
+    }
+
+    fn bounds(&self) -> Aabb {
+        match *self {
+            Shape::Point(p) => Aabb::new(p, p),
+            Shape::Edge { a, b, .. } => Aabb::new(
+                Point::new(a.x.min(b.x), a.y.min(b.y)),
+                Point::new(a.x.max(b.x), a.y.max(b.y)),
+            ),
+        }
+    }
+}
+
+/// Where a site's features sit in the list: corners `start..start + corners` (for a
+/// point site, its one point), then its edges.
+struct SiteFeatures {
+    start: usize,
+    corners: usize,
+    edges: usize,
+}
+
+/// Every feature of a scene, in site order.
+pub(super) struct Features {
+    pub(super) shapes: Vec<Shape>,
+    sites: Vec<SiteFeatures>,
+    /// The rings of every polygon site (outer ring first, then holes).
+    polygons: Vec<Vec<Vec<Point>>>,
+}
+
+impl Features {
+    /// The features of Euclidean points, segments, polylines and polygons (numbered as
+    /// `SCENE_FORMAT.md` numbers corners and edges); other site kinds are refused.
+    pub(super) fn of_scene(scene: &Scene) -> Result<Features, Error> {
+        let mut f = Features {
+            shapes: Vec::new(),
+            sites: Vec::new(),
+            polygons: Vec::new(),
+        };
+        for (i, site) in scene.sites.iter().enumerate() {
+            match &site.kind {
+                SiteKind::Point {
+                    at,
+                    metric: Metric::Euclidean,
+                } => f.push_chain(&[*at], &[]),
+                SiteKind::Segment { from, to } => f.push_chain(&[*from, *to], &[(0, 1)]),
+                SiteKind::Polyline { points } => {
+                    let edges: Vec<_> = (1..points.len()).map(|k| (k - 1, k)).collect();
+                    f.push_chain(points, &edges);
+                }
+                SiteKind::Polygon { rings } => {
+                    let (corners, edges) = ring_chain(rings);
+                    f.push_chain(&corners, &edges);
+                    f.polygons.push(rings.clone());
+                }
+                other => {
+                    return Err(Error::Unsupported {
+                        site: i,
+                        kind: other.name().to_string(),
+                        message: "offsets are computed for Euclidean points, segments, \
+                                  polylines and polygons (so far)"
+                            .into(),
+                    })
+                }
+            }
+        }
+        Ok(f)
+    }
+
+    /// Appends one site's corners and its edges (pairs of corner numbers).
+    fn push_chain(&mut self, corners: &[Point], edges: &[(usize, usize)]) {
+        let start = self.shapes.len();
+        self.shapes.extend(corners.iter().map(|&p| Shape::Point(p)));
+        self.shapes.extend(edges.iter().map(|&(i, j)| Shape::Edge {
+            a: corners[i],
+            b: corners[j],
+            corners: [start + i, start + j],
+        }));
+        self.sites.push(SiteFeatures {
+            start,
+            corners: corners.len(),
+            edges: edges.len(),
+        });
+    }
+
+    /// The features a generator stands for: a whole site (all its features) or one
+    /// corner or edge; `None` for a generator the scene does not have.
+    pub(super) fn of_generator(&self, g: &Generator) -> Option<Range<usize>> {
+        let s = self.sites.get(g.site())?;
+        match *g {
+            Generator::Site(_) => Some(s.start..s.start + s.corners + s.edges),
+            Generator::Feature { feature, index, .. } => {
+                let k = match feature {
+                    FeatureKind::Corner if index < s.corners => s.start + index,
+                    FeatureKind::Edge if index < s.edges => s.start + s.corners + index,
+                    _ => return None,
+                };
+                Some(k..k + 1)
+            }
+        }
+    }
+
+    /// Whether `q` lies inside a polygon site (inside its outer ring, outside its holes):
+    /// the even-odd rule over all of the polygon's rings.
+    pub(super) fn inside_region(&self, q: Point) -> bool {
+        self.polygons
+            .iter()
+            .any(|rings| rings.iter().filter(|r| ray_crosses(r, q)).count() % 2 == 1)
+    }
+}
+
+/// A polygon's corners numbered across its rings, and its edges: edge k goes from
+/// corner k to the next corner of the same ring.
+fn ring_chain(rings: &[Vec<Point>]) -> (Vec<Point>, Vec<(usize, usize)>) {
+    let mut corners = Vec::new();
+    let mut edges = Vec::new();
+    for ring in rings {
+        let (o, n) = (corners.len(), ring.len());
+        corners.extend_from_slice(ring);
+        edges.extend((0..n).map(|k| (o + k, o + (k + 1) % n)));
+    }
+    (corners, edges)
+}
+
+/// Whether the ray from `q` towards +x crosses the closed ring an odd number of times.
+fn ray_crosses(ring: &[Point], q: Point) -> bool {
+    let mut inside = false;
+    for (k, &a) in ring.iter().enumerate() {
+        let b = ring[(k + 1) % ring.len()];
+        if (a.y > q.y) != (b.y > q.y) {
+            let x = a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y);
+            if q.x < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// Features bucketed by their bounding boxes in a uniform grid.
+pub(super) struct Grid {
+    bounds: Aabb,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    buckets: Vec<Vec<usize>>,
+}
+
+impl Grid {
+    /// A grid whose cells are at least `reach` wide (queries of radius `reach` then look
+    /// at a few cells) and at most 256 along the longer side.
+    pub(super) fn new(shapes: &[Shape], reach: f64) -> Grid {
+        let mut bounds = Aabb::new(
+            Point::new(f64::MAX, f64::MAX),
+            Point::new(f64::MIN, f64::MIN),
+        );
+        for s in shapes {
+            let b = s.bounds();
+            bounds.min = Point::new(bounds.min.x.min(b.min.x), bounds.min.y.min(b.min.y));
+            bounds.max = Point::new(bounds.max.x.max(b.max.x), bounds.max.y.max(b.max.y));
+        }
+        let side = if shapes.is_empty() {
+            0.0
+        } else {
+            bounds.longest_side()
+        };
+        let cell = reach.max(side / 256.0).max(f64::MIN_POSITIVE);
+        let count = |len: f64| ((len / cell).floor() as usize + 1).min(257);
+        let (nx, ny) = if shapes.is_empty() {
+            (0, 0)
+        } else {
+            (count(bounds.width()), count(bounds.height()))
+        };
+        let mut grid = Grid {
+            bounds,
+            cell,
+            nx,
+            ny,
+            buckets: vec![Vec::new(); nx * ny],
+        };
+        for (k, s) in shapes.iter().enumerate() {
+            let b = s.bounds();
+            for j in grid.span(b.min.y, b.max.y, grid.bounds.min.y, ny) {
+                for i in grid.span(b.min.x, b.max.x, grid.bounds.min.x, nx) {
+                    grid.buckets[j * nx + i].push(k);
+                }
+            }
+        }
+        grid
+    }
+
+    /// The cell numbers along one axis that `[lo, hi]` overlaps (empty when outside).
+    fn span(&self, lo: f64, hi: f64, origin: f64, n: usize) -> Range<usize> {
+        if n == 0 || hi < origin || lo > origin + n as f64 * self.cell {
+            return 0..0;
+        }
+        let first = ((lo - origin) / self.cell).floor().max(0.0) as usize;
+        let last = (((hi - origin) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        first.min(n)..last + 1
+    }
+
+    /// Whether `pred` holds for some feature whose bounding box may meet the disk of
+    /// radius `r` around `q` (features may be visited more than once).
+    pub(super) fn any_near(&self, q: Point, r: f64, mut pred: impl FnMut(usize) -> bool) -> bool {
+        let (o, n) = (self.bounds.min, (self.nx, self.ny));
+        for j in self.span(q.y - r, q.y + r, o.y, n.1) {
+            for i in self.span(q.x - r, q.x + r, o.x, n.0) {
+                if self.buckets[j * self.nx + i].iter().any(|&k| pred(k)) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}

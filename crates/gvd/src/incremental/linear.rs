@@ -208,7 +208,12 @@ pub fn linear_voronoi(scene: &Scene) -> Result<VoronoiComplex, Error> {
     }
     let diagram = SegmentDiagram::new(&g.points, &g.segments, scene.domain)?;
     let (vertices, edges) = diagram.raw(scene.epsilon / 4.0);
-    Ok(assemble(&g, scene, vertices, edges))
+    let mut complex = assemble(&g, scene, vertices, edges);
+    complex.stats.insert(
+        "topology_overrides".into(),
+        serde_json::json!(diagram.overrides),
+    );
+    Ok(complex)
 }
 
 /// Union–find with path halving.

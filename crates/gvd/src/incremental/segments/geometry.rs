@@ -71,13 +71,6 @@ impl Line {
         }
     }
 
-    /// Distance to the closed segment.
-    pub(crate) fn closed_distance(&self, x: Point) -> f64 {
-        let (u, h) = self.coords(x);
-        let du = (-u).max(u - self.len).max(0.0);
-        du.hypot(h)
-    }
-
     /// Whether `x`, at clearance `t` from its generators, is nearer to the open
     /// segment (its foot strictly inside and `|offset| < t`).
     #[inline]

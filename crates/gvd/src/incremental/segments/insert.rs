@@ -46,6 +46,10 @@ pub(crate) struct Scratch {
     face_stamp: Vec<u32>,
     face_in: Vec<u32>,
     tree: Vec<u32>,
+    /// Vertices with `H < 0` that C4 or C5 kept out of `T`, and new vertices placed
+    /// on an old vertex because the edge's far end was claimed too: 0 when the signs
+    /// were consistent; otherwise the geometry near them may be off.
+    pub(crate) overrides: usize,
 }
 
 #[derive(PartialEq)]
@@ -158,16 +162,12 @@ pub(crate) fn insert_segment(
         if fresh[k] {
             let behind = if k == 0 { line.d * -1.0 } else { line.d };
             split_behind(g, sites, p, behind);
-            if std::env::var("GVD_DEBUG").is_ok() { eprintln!("seg {s}: split behind {p} -> vertex {}", g.vertices.len() - 1); }
         }
     }
     scratch.begin(g);
 
     let seed = find_seed(g, sites, &line, &h).ok_or(InsertError::NoSeed)?;
     grow_tree(g, seed, &h, scratch);
-    if std::env::var("GVD_DEBUG").is_ok() {
-        eprintln!("seg {s}: seed {seed} T = {:?}", scratch.tree.iter().map(|&v| (v, h(g, v), g.vertices[v as usize].at)).collect::<Vec<_>>());
-    }
 
     // A2: a new vertex on every edge leaving T.
     let new_face = g.faces.len() as u32;
@@ -190,10 +190,10 @@ pub(crate) fn insert_segment(
             let (gl, gr) = (g.faces[left as usize].gen, g.faces[right as usize].gen);
             let bis = sites.bisector(gl, gr, from.lerp(to, 0.5));
             let (at, t) = bis.boundary(from, to, inside);
-            let x = g.add_vertex(at, t);
-            if std::env::var("GVD_DEBUG").is_ok() {
-                eprintln!("seg {s} {:?}: new {x} on {u}->{w} ({:?}|{:?}) {:?} from {from:?} to {to:?}: {at:?} t={t}", line.ends, g.faces[left as usize].gen, g.faces[right as usize].gen, bis);
+            if at == to {
+                scratch.overrides += 1;
             }
+            let x = g.add_vertex(at, t);
             // The old half-edge u → w becomes x → w.
             g.edges[e as usize].origin = x;
             g.vertices[x as usize].out = e;
@@ -253,8 +253,6 @@ pub(crate) fn insert_segment(
         if fresh[k] {
             if let Some(&(ne, _, _)) = new_edges.iter().find(|e| g.edges[e.0 as usize].face == p) {
                 g.split_edge(ne, sites.points[p as usize], 0.0);
-            } else if std::env::var("GVD_DEBUG").is_ok() {
-                eprintln!("seg {s}: fresh endpoint {p} has no new edge");
             }
         }
     }
@@ -365,15 +363,10 @@ fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scr
                 sc.decide(v, false);
                 continue;
             }
-            let tt = tree_test(g, v, sc);
-            if std::env::var("GVD_DEBUG").is_ok() {
-                eprintln!("  test {v} h={hv} -> {}", match tt { TreeTest::Ok => "ok", TreeTest::Cycle => "cycle", TreeTest::SplitsFace => "splits" });
-                if matches!(tt, TreeTest::SplitsFace) { for e in g.outgoing(v) { let f = g.edges[e as usize].face; if sc.face_count(f) > 0 { eprintln!("   face {f} cycle: {:?}", g.cycle(f).map(|c| { let o = g.edges[c as usize].origin; (o, sc.is_in(o), g.vertices[o as usize].at, g.vertices[o as usize].t) }).collect::<Vec<_>>()); } } }
-                for e in g.outgoing(v) { let he = &g.edges[e as usize]; eprintln!("     out {e} -> {} in={} face {} {:?} facecount {}", g.target(e), sc.is_in(g.target(e)), he.face, g.faces[he.face as usize].gen, sc.face_count(he.face)); }
-            }
-            match tt {
+            match tree_test(g, v, sc) {
                 TreeTest::Cycle => {
                     sc.decide(v, false);
+                    sc.overrides += 1;
                     continue;
                 }
                 TreeTest::SplitsFace => continue,

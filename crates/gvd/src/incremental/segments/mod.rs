@@ -38,6 +38,8 @@ pub(crate) struct SegmentDiagram {
     point_id: Vec<u32>,
     lines: Vec<Line>,
     scale: f64,
+    /// See [`Scratch::overrides`](insert::Scratch).
+    pub(crate) overrides: usize,
 }
 
 /// An edge of the raw diagram: two generators, the polyline between two vertices.
@@ -104,15 +106,13 @@ impl SegmentDiagram {
             for &p in &lines[s].ends {
                 at_point[p as usize].push(s as u32);
             }
-            #[cfg(debug_assertions)]
-            if let Err(e) = graph.check() {
-                return Err(Error::Internal(format!("after segment {s}: {e}")));
-            }
-            if std::env::var("GVD_DEBUG").is_ok() {
-                debug_vertices(&graph, &pd.pts, &lines, &face_of_segment, s);
-            }
+
+        }
+        if let Err(e) = graph.check() {
+            return Err(Error::Internal(format!("invalid segment graph: {e}")));
         }
         Ok(SegmentDiagram {
+            overrides: scratch.overrides,
             graph,
             points: pd.pts.clone(),
             point_id,
@@ -197,34 +197,6 @@ impl SegmentDiagram {
     }
 }
 
-fn debug_vertices(g: &Graph, pts: &[Point], lines: &[Line], inserted: &[u32], s: usize) {
-    for (v, vx) in g.vertices.iter().enumerate() {
-        if !vx.alive || v == 0 {
-            continue;
-        }
-        let mut near = f64::INFINITY;
-        for p in pts {
-            near = near.min(vx.at.dist(*p));
-        }
-        for (k, l) in lines.iter().enumerate() {
-            if inserted[k] != u32::MAX {
-                near = near.min(l.closed_distance(vx.at));
-            }
-        }
-        let mut spread: f64 = 0.0;
-        for e in g.outgoing(v as u32) {
-            let d = match g.faces[g.edges[e as usize].face as usize].gen {
-                Gen::Point(i) => vx.at.dist(pts[i as usize]),
-                Gen::Segment(i) => lines[i as usize].closed_distance(vx.at),
-            };
-            spread = spread.max((d - vx.t).abs());
-        }
-        if spread > 1e-9 * (1.0 + vx.t) || near < vx.t - 1e-9 * (1.0 + vx.t) {
-            eprintln!("after seg {s}: vertex {v} at {:?} t={} spread={spread} nearest={near}", vx.at, vx.t);
-        }
-    }
-}
-
 /// A fixed pseudo-random permutation of `0..n` (insertion in random order keeps the
 /// expected conflict trees small).
 fn insertion_order(n: usize) -> Vec<usize> {
@@ -238,26 +210,4 @@ fn insertion_order(n: usize) -> Vec<usize> {
         order.swap(i, j);
     }
     order
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn debug_two() {
-        let p = [
-            Point::new(-1.0, -0.8),
-            Point::new(1.2, -0.6),
-            Point::new(0.1, 1.1),
-        ];
-        let d = SegmentDiagram::new(&p, &[[0, 1], [1, 2], [2, 0]], Aabb::from_array([-2.0, -2.0, 2.0, 2.0])).unwrap();
-        let (v, e) = d.raw(1e-3);
-        for (i, x) in v.iter().enumerate() {
-            eprintln!("V{i} {:?} {:?}", x.at, x.gens);
-        }
-        for x in &e {
-            eprintln!("E {:?} {:?} {:?} .. {:?}", x.gens, x.ends, x.points[0], x.points.last());
-        }
-    }
 }

@@ -299,7 +299,12 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
 /// B1: the vertex of least `H < 0` on the faces around the endpoints; failing that
 /// (rounding at a near tie), on the faces reached from them across edges, nearest
 /// faces first, up to a bound.
-fn find_seed(g: &Graph, sites: &Sites, line: &Line, h: &impl Fn(&Graph, u32) -> f64) -> Option<u32> {
+fn find_seed(
+    g: &Graph,
+    sites: &Sites,
+    line: &Line,
+    h: &impl Fn(&Graph, u32) -> f64,
+) -> Option<u32> {
     let mut best: Option<(f64, u32)> = None;
     let consider = |f: u32, best: &mut Option<(f64, u32)>| {
         for e in g.cycle(f) {
@@ -313,7 +318,11 @@ fn find_seed(g: &Graph, sites: &Sites, line: &Line, h: &impl Fn(&Graph, u32) -> 
     let mut start: Vec<u32> = Vec::new();
     for &p in &line.ends {
         start.push(p);
-        start.extend(sites.at_point[p as usize].iter().map(|&s| sites.face_of_segment[s as usize]));
+        start.extend(
+            sites.at_point[p as usize]
+                .iter()
+                .map(|&s| sites.face_of_segment[s as usize]),
+        );
     }
     for &f in &start {
         consider(f, &mut best);

@@ -106,7 +106,6 @@ impl SegmentDiagram {
             for &p in &lines[s].ends {
                 at_point[p as usize].push(s as u32);
             }
-
         }
         if let Err(e) = graph.check() {
             return Err(Error::Internal(format!("invalid segment graph: {e}")));

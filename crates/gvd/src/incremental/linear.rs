@@ -216,6 +216,9 @@ pub fn linear_voronoi(scene: &Scene) -> Result<VoronoiComplex, Error> {
     Ok(complex)
 }
 
+/// An output edge before clipping: points, end vertices (`None` for a loop), labels.
+type Chain = (Vec<Point>, Option<usize>, Option<usize>, [Generator; 2]);
+
 /// Union–find with path halving.
 fn find(parent: &mut [usize], mut v: usize) -> usize {
     while parent[v] != v {
@@ -280,7 +283,7 @@ fn assemble(
     }
     let is_node = |v: usize| labels[v].len() >= 3 || incident[v].len() != 2;
     let mut used = vec![false; kept.len()];
-    let mut chains: Vec<(Vec<Point>, Option<usize>, Option<usize>, [Generator; 2])> = Vec::new();
+    let mut chains: Vec<Chain> = Vec::new();
     let walk = |start_edge: usize, from: usize, used: &mut Vec<bool>| {
         let mut points: Vec<Point> = Vec::new();
         let (mut e, mut v) = (start_edge, from);
@@ -307,11 +310,11 @@ fn assemble(
             }
         }
     };
-    for v in 0..nv {
+    for (v, around) in incident.iter().enumerate() {
         if !is_node(v) {
             continue;
         }
-        for &k in &incident[v].clone() {
+        for &k in around {
             if used[k] {
                 continue;
             }

@@ -368,7 +368,7 @@ fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scr
             continue;
         }
         if v != seed {
-            if !(hv < 0.0) || next_to_ghost(g, v) {
+            if hv.is_nan() || hv >= 0.0 || next_to_ghost(g, v) {
                 sc.decide(v, false);
                 continue;
             }

@@ -164,9 +164,11 @@ pub(crate) fn insert_segment(
             split_behind(g, sites, p, behind);
         }
     }
+    let seed = match find_seed(g, sites, &line, &h) {
+        Some(v) => v,
+        None => split_crossing(g, sites, &line).ok_or(InsertError::NoSeed)?,
+    };
     scratch.begin(g);
-
-    let seed = find_seed(g, sites, &line, &h).ok_or(InsertError::NoSeed)?;
     grow_tree(g, seed, &h, scratch);
 
     // A2: a new vertex on every edge leaving T.
@@ -294,6 +296,45 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
     let bis = sites.bisector(Gen::Point(p), g.faces[other as usize].gen, a.lerp(b, 0.5));
     let (at, t) = bis.boundary(a, b, |x, _| turn(ta, angle(x)) < to_ray);
     g.split_edge(e, at, t);
+}
+
+/// When no vertex is claimed (the segment's region only cuts edges in their middle):
+/// a new vertex of degree two where an edge of a face around an endpoint crosses the
+/// open segment; it is claimed, being (almost) on the segment.
+fn split_crossing(g: &mut Graph, sites: &Sites, line: &Line) -> Option<u32> {
+    let mut faces: Vec<u32> = Vec::new();
+    for &p in &line.ends {
+        faces.push(p);
+        faces.extend(
+            sites.at_point[p as usize]
+                .iter()
+                .map(|&s| sites.face_of_segment[s as usize]),
+        );
+    }
+    for f in faces {
+        for e in g.cycle(f).collect::<Vec<_>>() {
+            let (a, b) = (g.edges[e as usize].origin, g.target(e));
+            if a == GHOST || b == GHOST {
+                continue;
+            }
+            let (pa, pb) = (g.vertices[a as usize].at, g.vertices[b as usize].at);
+            let (sa, sb) = (line.coords(pa).1, line.coords(pb).1);
+            if !(sa * sb < 0.0) {
+                continue;
+            }
+            let other = g.edges[g.edges[e as usize].twin as usize].face;
+            let bis = sites.bisector(
+                g.faces[f as usize].gen,
+                g.faces[other as usize].gen,
+                pa.lerp(pb, 0.5),
+            );
+            let (at, t) = bis.boundary(pa, pb, |x, _| (line.coords(x).1 < 0.0) == (sa < 0.0));
+            if line.claims(at, t) {
+                return Some(g.split_edge(e, at, t));
+            }
+        }
+    }
+    None
 }
 
 /// B1: the vertex of least `H < 0` on the faces around the endpoints; failing that

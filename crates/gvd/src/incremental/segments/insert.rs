@@ -319,7 +319,7 @@ fn split_crossing(g: &mut Graph, sites: &Sites, line: &Line) -> Option<u32> {
             }
             let (pa, pb) = (g.vertices[a as usize].at, g.vertices[b as usize].at);
             let (sa, sb) = (line.coords(pa).1, line.coords(pb).1);
-            if !(sa * sb < 0.0) {
+            if sa * sb >= 0.0 || (sa * sb).is_nan() {
                 continue;
             }
             let other = g.edges[g.edges[e as usize].twin as usize].face;

@@ -114,7 +114,7 @@ impl Face {
 
 /// The inside ring and the surrounding face's hole of a closed loop edge.
 fn island(points: &[Point], domain: &Aabb, tol: f64, sites: [usize; 2]) -> Vec<Face> {
-    let mut ring = dedup(points.iter().map(|&p| clamp(p, domain)), tol);
+    let mut ring = dedup(points.iter().map(|&p| domain.clamp(p)), tol);
     while ring.len() > 1 && ring[ring.len() - 1].dist(ring[0]) <= tol {
         ring.pop();
     }
@@ -211,7 +211,7 @@ impl<'a> Graph<'a> {
             edges: Vec::new(),
         };
         for v in &complex.vertices {
-            let at = clamp(v.at, domain);
+            let at = domain.clamp(v.at);
             if g.boundary_dist(at) <= tol {
                 let at = g.snap(at);
                 let t = g.boundary_t(at);
@@ -243,7 +243,7 @@ impl<'a> Graph<'a> {
                 (at.x.is_finite() && at.y.is_finite()).then_some(v)
             }
             None => {
-                let at = self.snap(clamp(p, self.domain));
+                let at = self.snap(self.domain.clamp(p));
                 let t = self.boundary_t(at);
                 Some(self.push(at, t))
             }
@@ -325,7 +325,7 @@ impl<'a> Graph<'a> {
     /// clamped to the domain, points closer than `tol` dropped.
     fn polyline(&self, complex: &VoronoiComplex, k: usize, u: usize, v: usize) -> Vec<Point> {
         let pts = &complex.edges[k].points;
-        let inner = pts[1..pts.len() - 1].iter().map(|&p| clamp(p, self.domain));
+        let inner = pts[1..pts.len() - 1].iter().map(|&p| self.domain.clamp(p));
         let mut out = dedup(std::iter::once(self.nodes[u].at).chain(inner), self.tol);
         let end = self.nodes[v].at;
         if out.len() > 1 && out[out.len() - 1].dist(end) <= self.tol {
@@ -509,10 +509,6 @@ fn dedup(points: impl Iterator<Item = Point>, tol: f64) -> Vec<Point> {
         }
     }
     out
-}
-
-fn clamp(p: Point, d: &Aabb) -> Point {
-    Point::new(p.x.clamp(d.min.x, d.max.x), p.y.clamp(d.min.y, d.max.y))
 }
 
 fn signed_area(ring: &[Point]) -> f64 {

@@ -68,37 +68,19 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
     let points = euclidean_points(scene);
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {
-            let start = std::time::Instant::now();
-            let mut complex = incremental::points_voronoi(&points, scene.domain)?;
-            if !points.is_empty() {
-                let grid = PointGrid::new(&points);
-                complex.cells =
-                    cells::build_cells(&complex, &scene.domain, &|q| grid.nearest(q).unwrap_or(0));
-            }
-            let stats = &mut complex.stats;
-            stats.insert(
-                "seconds".into(),
-                serde_json::json!(start.elapsed().as_secs_f64()),
-            );
-            stats.insert("engine".into(), serde_json::json!("incremental"));
-            return Ok(Computation {
-                complex,
-                boxes: Vec::new(),
+            return timed_incremental(|| {
+                let mut complex = incremental::points_voronoi(&points, scene.domain)?;
+                if !points.is_empty() {
+                    let grid = PointGrid::new(&points);
+                    complex.cells = cells::build_cells(&complex, &scene.domain, &|q| {
+                        grid.nearest(q).unwrap_or(0)
+                    });
+                }
+                Ok(complex)
             });
         }
         (Engine::Auto | Engine::Incremental, None) if incremental::linear::supports(scene) => {
-            let start = std::time::Instant::now();
-            let mut complex = incremental::linear::linear_voronoi(scene)?;
-            let stats = &mut complex.stats;
-            stats.insert(
-                "seconds".into(),
-                serde_json::json!(start.elapsed().as_secs_f64()),
-            );
-            stats.insert("engine".into(), serde_json::json!("incremental"));
-            return Ok(Computation {
-                complex,
-                boxes: Vec::new(),
-            });
+            return timed_incremental(|| incremental::linear::linear_voronoi(scene));
         }
         (Engine::Incremental, None) => {
             let (site, kind) = scene
@@ -137,6 +119,24 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
     Ok(Computation {
         complex: out.complex,
         boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
+    })
+}
+
+/// Runs an incremental computation and records its time and engine in `stats`.
+fn timed_incremental(
+    run: impl FnOnce() -> Result<VoronoiComplex, Error>,
+) -> Result<Computation, Error> {
+    let start = std::time::Instant::now();
+    let mut complex = run()?;
+    let stats = &mut complex.stats;
+    stats.insert(
+        "seconds".into(),
+        serde_json::json!(start.elapsed().as_secs_f64()),
+    );
+    stats.insert("engine".into(), serde_json::json!("incremental"));
+    Ok(Computation {
+        complex,
+        boxes: Vec::new(),
     })
 }
 

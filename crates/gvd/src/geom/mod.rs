@@ -194,6 +194,36 @@ impl Aabb {
             Point::new(self.min.x, self.max.y),
         ]
     }
+    /// `p` moved into the box (removes the rounding of a computed boundary point).
+    #[inline]
+    pub fn clamp(&self, p: Point) -> Point {
+        Point::new(
+            p.x.clamp(self.min.x, self.max.x),
+            p.y.clamp(self.min.y, self.max.y),
+        )
+    }
+    /// Liang–Barsky on a whole line: the range of `s` for which `m + s·dir` lies in the
+    /// box, if any.
+    pub fn line_range(&self, m: Point, dir: Point) -> Option<(f64, f64)> {
+        let (mut s0, mut s1) = (f64::NEG_INFINITY, f64::INFINITY);
+        for (den, num) in [
+            (-dir.x, m.x - self.min.x),
+            (dir.x, self.max.x - m.x),
+            (-dir.y, m.y - self.min.y),
+            (dir.y, self.max.y - m.y),
+        ] {
+            if den == 0.0 {
+                if num < 0.0 {
+                    return None;
+                }
+            } else if den < 0.0 {
+                s0 = s0.max(num / den);
+            } else {
+                s1 = s1.min(num / den);
+            }
+        }
+        (s0 <= s1).then_some((s0, s1))
+    }
     /// The distance from `p` to the box boundary when `p` lies outside, else 0.
     pub fn outside_distance(&self, p: Point) -> f64 {
         let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);

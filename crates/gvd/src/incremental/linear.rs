@@ -413,10 +413,10 @@ fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool)> {
         };
         let (p0, p1) = (w[0].lerp(w[1], t0), w[0].lerp(w[1], t1));
         if cur.is_empty() {
-            cur.push(clamp(p0, b));
+            cur.push(b.clamp(p0));
             cur_cut = t0 > 0.0;
         }
-        cur.push(clamp(p1, b));
+        cur.push(b.clamp(p1));
         if t1 < 1.0 {
             pieces.push((std::mem::take(&mut cur), cur_cut, true));
         }
@@ -428,29 +428,9 @@ fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool)> {
     pieces
 }
 
-fn clamp(p: Point, b: &Aabb) -> Point {
-    Point::new(p.x.clamp(b.min.x, b.max.x), p.y.clamp(b.min.y, b.max.y))
-}
-
-/// Liang–Barsky: the parameter range of `a + t (b − a)`, `t ∈ [0, 1]`, inside `bx`.
+/// The parameter range of `a + t (b − a)`, `t ∈ [0, 1]`, inside `bx`.
 fn clip_range(a: Point, b: Point, bx: &Aabb) -> Option<(f64, f64)> {
-    let d = b - a;
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (den, num) in [
-        (-d.x, a.x - bx.min.x),
-        (d.x, bx.max.x - a.x),
-        (-d.y, a.y - bx.min.y),
-        (d.y, bx.max.y - a.y),
-    ] {
-        if den == 0.0 {
-            if num < 0.0 {
-                return None;
-            }
-        } else if den < 0.0 {
-            t0 = t0.max(num / den);
-        } else {
-            t1 = t1.min(num / den);
-        }
-    }
+    let (t0, t1) = bx.line_range(a, b - a)?;
+    let (t0, t1) = (t0.max(0.0), t1.min(1.0));
     (t0 <= t1).then_some((t0, t1))
 }

@@ -4,7 +4,7 @@ use super::graph::GHOST;
 use super::predicates::{circumcenter, incircle};
 use super::PointDiagram;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
-use crate::geom::{Aabb, Point};
+use crate::geom::Point;
 
 /// Union–find with path halving.
 fn find(parent: &mut [u32], mut v: u32) -> u32 {
@@ -14,33 +14,6 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
         v = g;
     }
     v
-}
-
-/// Liang–Barsky on a whole line: the range of `s` for which `m + s·dir` lies in `b`.
-fn line_range(m: Point, dir: Point, b: &Aabb) -> Option<(f64, f64)> {
-    let (mut s0, mut s1) = (f64::NEG_INFINITY, f64::INFINITY);
-    for (den, num) in [
-        (-dir.x, m.x - b.min.x),
-        (dir.x, b.max.x - m.x),
-        (-dir.y, m.y - b.min.y),
-        (dir.y, b.max.y - m.y),
-    ] {
-        if den == 0.0 {
-            if num < 0.0 {
-                return None;
-            }
-        } else if den < 0.0 {
-            s0 = s0.max(num / den);
-        } else {
-            s1 = s1.min(num / den);
-        }
-    }
-    (s0 <= s1).then_some((s0, s1))
-}
-
-/// `p` moved into `b` (removes the rounding of a computed boundary point).
-fn clamp(p: Point, b: &Aabb) -> Point {
-    Point::new(p.x.clamp(b.min.x, b.max.x), p.y.clamp(b.min.y, b.max.y))
 }
 
 /// What the edge pass needs of a vertex, packed so that the random access to an
@@ -164,7 +137,7 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
             let (pa, pb) = (pos(a), pos(b));
             let (m, dir) = (pa.lerp(pb, 0.5), (pa - pb).perp());
             let param = |p: Point| (p - m).dot(dir) / dir.dot(dir);
-            let Some((s0, s1)) = line_range(m, dir, &d.domain) else {
+            let Some((s0, s1)) = d.domain.line_range(m, dir) else {
                 continue;
             };
             let lo = if from.is_some() {
@@ -180,7 +153,7 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
             if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
                 continue;
             }
-            let on_line = |s: f64| clamp(m + dir * s, &d.domain);
+            let on_line = |s: f64| d.domain.clamp(m + dir * s);
             (
                 if from.is_some() { nu.at } else { on_line(lo) },
                 if to.is_some() { nw.at } else { on_line(hi) },

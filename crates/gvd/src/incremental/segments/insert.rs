@@ -302,16 +302,7 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
 /// a new vertex of degree two where an edge of a face around an endpoint crosses the
 /// open segment; it is claimed, being (almost) on the segment.
 fn split_crossing(g: &mut Graph, sites: &Sites, line: &Line) -> Option<u32> {
-    let mut faces: Vec<u32> = Vec::new();
-    for &p in &line.ends {
-        faces.push(p);
-        faces.extend(
-            sites.at_point[p as usize]
-                .iter()
-                .map(|&s| sites.face_of_segment[s as usize]),
-        );
-    }
-    for f in faces {
+    for f in endpoint_faces(sites, line) {
         for e in g.cycle(f).collect::<Vec<_>>() {
             let (a, b) = (g.edges[e as usize].origin, g.target(e));
             if a == GHOST || b == GHOST {
@@ -337,6 +328,18 @@ fn split_crossing(g: &mut Graph, sites: &Sites, line: &Line) -> Option<u32> {
     None
 }
 
+/// The faces around the segment's endpoints: theirs, and those of the segments
+/// inserted there before.
+fn endpoint_faces(sites: &Sites, line: &Line) -> Vec<u32> {
+    let mut faces = Vec::new();
+    for &p in &line.ends {
+        faces.push(p);
+        let segments = &sites.at_point[p as usize];
+        faces.extend(segments.iter().map(|&s| sites.face_of_segment[s as usize]));
+    }
+    faces
+}
+
 /// B1: the vertex of least `H < 0` on the faces around the endpoints; failing that
 /// (rounding at a near tie), on the faces reached from them across edges, nearest
 /// faces first, up to a bound.
@@ -356,15 +359,7 @@ fn find_seed(
             }
         }
     };
-    let mut start: Vec<u32> = Vec::new();
-    for &p in &line.ends {
-        start.push(p);
-        start.extend(
-            sites.at_point[p as usize]
-                .iter()
-                .map(|&s| sites.face_of_segment[s as usize]),
-        );
-    }
+    let start = endpoint_faces(sites, line);
     for &f in &start {
         consider(f, &mut best);
     }

@@ -113,7 +113,7 @@ impl SegmentDiagram {
         Ok(SegmentDiagram {
             overrides: scratch.overrides,
             graph,
-            points: pd.pts.clone(),
+            points: pd.pts,
             point_id,
             lines,
             scale: pd.scale,

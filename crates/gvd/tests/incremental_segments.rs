@@ -231,10 +231,9 @@ fn degenerate_inputs_are_sound() {
     }
 }
 
-/// Known bug (issue 4 stays open): a point between two parallel segments gets its
-/// vertices off the midline by about 0.1.
+/// A point between two parallel segments: the upper segment's region wraps around the
+/// point's face, so the lower segment's face meets `T` in two chains.
 #[test]
-#[ignore = "known bug: a point between two parallel segments"]
 fn point_between_parallel_segments() {
     let s = json_scene(
         "voronoi",

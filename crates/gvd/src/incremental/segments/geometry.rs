@@ -218,6 +218,13 @@ impl Bisector {
         }
     }
 
+    /// The point at fraction `λ` of the parameter range from `from` to `to`, and its
+    /// clearance.
+    pub(crate) fn at_fraction(&self, from: Point, to: Point, lambda: f64) -> (Point, f64) {
+        let (s0, s1) = self.range(from, to);
+        self.point(from, to, s0 + (s1 - s0) * lambda)
+    }
+
     fn range(&self, from: Point, to: Point) -> (f64, f64) {
         match self {
             Bisector::Chord { .. } => (0.0, 1.0),

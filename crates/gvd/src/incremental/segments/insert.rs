@@ -43,8 +43,6 @@ pub(crate) struct Scratch {
     stamp: u32,
     vertex_stamp: Vec<u32>,
     vertex_in: Vec<bool>,
-    face_stamp: Vec<u32>,
-    face_in: Vec<u32>,
     tree: Vec<u32>,
     /// Vertices with `H < 0` that C4 or C5 kept out of `T`, and new vertices placed
     /// on an old vertex because the edge's far end was claimed too: 0 when the signs
@@ -99,43 +97,30 @@ impl Scratch {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
             self.vertex_stamp.iter_mut().for_each(|s| *s = 0);
-            self.face_stamp.iter_mut().for_each(|s| *s = 0);
             self.stamp = 1;
         }
-        self.vertex_stamp.resize(g.vertices.len(), 0);
-        self.vertex_in.resize(g.vertices.len(), false);
-        self.face_stamp.resize(g.faces.len(), 0);
-        self.face_in.resize(g.faces.len(), 0);
+        self.fit(g);
         self.tree.clear();
     }
 
+    /// Makes room for vertices added during the insertion (undecided).
+    fn fit(&mut self, g: &Graph) {
+        self.vertex_stamp.resize(g.vertices.len(), 0);
+        self.vertex_in.resize(g.vertices.len(), false);
+    }
+
+    /// Whether `v` is in `T` (vertices made during this insertion never are).
     fn is_in(&self, v: u32) -> bool {
-        self.vertex_stamp[v as usize] == self.stamp && self.vertex_in[v as usize]
+        self.decided(v) && self.vertex_in[v as usize]
     }
 
     fn decided(&self, v: u32) -> bool {
-        self.vertex_stamp[v as usize] == self.stamp
+        self.vertex_stamp.get(v as usize) == Some(&self.stamp)
     }
 
     fn decide(&mut self, v: u32, inside: bool) {
         self.vertex_stamp[v as usize] = self.stamp;
         self.vertex_in[v as usize] = inside;
-    }
-
-    fn face_count(&self, f: u32) -> u32 {
-        if self.face_stamp[f as usize] == self.stamp {
-            self.face_in[f as usize]
-        } else {
-            0
-        }
-    }
-
-    fn add_to_face(&mut self, f: u32) {
-        if self.face_stamp[f as usize] != self.stamp {
-            self.face_stamp[f as usize] = self.stamp;
-            self.face_in[f as usize] = 0;
-        }
-        self.face_in[f as usize] += 1;
     }
 }
 
@@ -169,7 +154,7 @@ pub(crate) fn insert_segment(
         None => split_crossing(g, sites, &line).ok_or(InsertError::NoSeed)?,
     };
     scratch.begin(g);
-    grow_tree(g, seed, &h, scratch);
+    grow_tree(g, sites, &line, seed, &h, scratch);
 
     // A2: a new vertex on every edge leaving T.
     let new_face = g.faces.len() as u32;
@@ -203,40 +188,48 @@ pub(crate) fn insert_segment(
         }
     }
 
-    // A3: per old face, the entry (T begins after it) and exit (T ends before it).
-    // At x on old edge e = x → w: e's left face L is left by T at x (exit), the right
-    // face R = face(twin e) is entered at x (entry).
-    let mut entry: Vec<(u32, u32)> = Vec::with_capacity(splits.len()); // (face, x-index)
-    let mut exit: Vec<(u32, u32)> = Vec::with_capacity(splits.len());
-    for (k, &(_, e)) in splits.iter().enumerate() {
-        let left = g.edges[e as usize].face;
-        let right = g.edges[g.edges[e as usize].twin as usize].face;
-        exit.push((left, k as u32));
-        entry.push((right, k as u32));
+    // A3: each chain of T along an old face F runs from an entry vertex xa (on a split
+    // edge whose right face is F) to the next exit vertex xb along F (a split edge
+    // whose left face is F); it becomes one new edge xa → xb. A face may meet T in
+    // several chains: the new region can wrap around another face. Found by walking F
+    // from xa through T (its links are still the old ones).
+    let split_of: std::collections::HashMap<u32, usize> = splits
+        .iter()
+        .enumerate()
+        .map(|(k, &(_, e))| (e, k))
+        .collect();
+    let mut chains: Vec<(usize, usize)> = Vec::with_capacity(splits.len());
+    for (a, &(_, ea)) in splits.iter().enumerate() {
+        let mut h = g.edges[g.edges[ea as usize].twin as usize].next;
+        let mut steps = 0;
+        while scratch.is_in(g.edges[h as usize].origin) {
+            h = g.edges[h as usize].next;
+            steps += 1;
+            if steps > g.edges.len() {
+                return Err(InsertError::BrokenChain);
+            }
+        }
+        let &b = split_of.get(&h).ok_or(InsertError::BrokenChain)?;
+        chains.push((a, b));
     }
-    entry.sort_unstable();
-    exit.sort_unstable();
-    if entry.windows(2).any(|w| w[0].0 == w[1].0) || exit.windows(2).any(|w| w[0].0 == w[1].0) {
-        return Err(InsertError::BrokenChain);
-    }
-    // The new edge of face F runs entry(F) → exit(F); remember each new edge's twin
-    // (on the segment's face) by its start, the exit vertex.
+    // Remember each new edge's twin (on the segment's face) by its start, the exit.
     let mut twin_from_exit: Vec<u32> = vec![NONE; splits.len()];
     let mut new_edges: Vec<(u32, usize, usize)> = Vec::with_capacity(splits.len());
-    for (&(f, a), &(f2, b)) in entry.iter().zip(exit.iter()) {
-        if f != f2 {
-            return Err(InsertError::BrokenChain);
-        }
-        let (xa, ea) = splits[a as usize];
-        let (xb, eb) = splits[b as usize];
+    for (a, b) in chains {
+        let (xa, ea) = splits[a];
+        let (xb, eb) = splits[b];
+        let into_a = g.edges[ea as usize].twin;
+        let f = g.edges[into_a as usize].face;
         let ne = g.add_edge(xa, xb, f, new_face);
         // Face F: (w' → xa) then xa → xb then (xb → w).
-        let into_a = g.edges[ea as usize].twin;
         g.link(into_a, ne);
         g.link(ne, eb);
         g.faces[f as usize].edge = ne;
-        twin_from_exit[b as usize] = ne + 1;
-        new_edges.push((ne, a as usize, b as usize));
+        if twin_from_exit[b] != NONE {
+            return Err(InsertError::BrokenChain);
+        }
+        twin_from_exit[b] = ne + 1;
+        new_edges.push((ne, a, b));
     }
     // The segment's face: the twin xb → xa is followed by the twin leaving xa, i.e. the
     // new edge whose exit vertex is xa.
@@ -393,7 +386,14 @@ fn next_to_ghost(g: &Graph, v: u32) -> bool {
 /// B2: grows `T` from `seed` under C4 and C5. A vertex that fails C5 stays undecided:
 /// it is tried again when a neighbour joins `T` (the vertices of `T` are taken most
 /// negative `H` first, which need not be the order in which a face's chain grows).
-fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scratch) {
+fn grow_tree(
+    g: &mut Graph,
+    sites: &Sites,
+    line: &Line,
+    seed: u32,
+    h: &impl Fn(&Graph, u32) -> f64,
+    sc: &mut Scratch,
+) {
     let mut heap = BinaryHeap::new();
     heap.push(Candidate {
         h: h(g, seed),
@@ -408,20 +408,19 @@ fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scr
                 sc.decide(v, false);
                 continue;
             }
+            split_unclaimed_edges(g, sites, line, v, sc);
             match tree_test(g, v, sc) {
                 TreeTest::Cycle => {
                     sc.decide(v, false);
                     sc.overrides += 1;
                     continue;
                 }
-                TreeTest::SplitsFace => continue,
                 TreeTest::Ok => {}
             }
         }
         sc.decide(v, true);
         sc.tree.push(v);
         for e in g.outgoing(v) {
-            sc.add_to_face(g.edges[e as usize].face);
             let w = g.target(e);
             if !sc.decided(w) {
                 heap.push(Candidate { h: h(g, w), v: w });
@@ -430,12 +429,39 @@ fn grow_tree(g: &Graph, seed: u32, h: &impl Fn(&Graph, u32) -> f64, sc: &mut Scr
     }
 }
 
+/// Fractions of an edge sampled for points the segment does not claim.
+const EDGE_SAMPLES: [f64; 7] = [0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875];
+
+/// An edge from `v` to `T` whose two ends the segment claims may leave its region in
+/// the middle (a bisector bending around an endpoint, or passing a site): `T` would
+/// then swallow a piece that stays. Such an edge gets a vertex of degree two at an
+/// unclaimed sample, kept out of `T`.
+fn split_unclaimed_edges(g: &mut Graph, sites: &Sites, line: &Line, v: u32, sc: &mut Scratch) {
+    let to_tree: Vec<u32> = g.outgoing(v).filter(|&e| sc.is_in(g.target(e))).collect();
+    for e in to_tree {
+        let (from, to) = (
+            g.vertices[v as usize].at,
+            g.vertices[g.target(e) as usize].at,
+        );
+        let left = g.faces[g.edges[e as usize].face as usize].gen;
+        let right = g.faces[g.edges[g.edges[e as usize].twin as usize].face as usize].gen;
+        let bis = sites.bisector(left, right, from.lerp(to, 0.5));
+        let unclaimed = EDGE_SAMPLES
+            .iter()
+            .map(|&l| bis.at_fraction(from, to, l))
+            .find(|&(x, t)| !line.claims(x, t));
+        if let Some((at, t)) = unclaimed {
+            let x = g.split_edge(e, at, t);
+            sc.fit(g);
+            sc.decide(x, false);
+        }
+    }
+}
+
 enum TreeTest {
     Ok,
     /// C4 fails: `v` has two or more edges to `T`.
     Cycle,
-    /// C5 fails: on some face `v` is not next to the face's `T` chain.
-    SplitsFace,
 }
 
 /// C4 and C5 for adding `v` to `T`.
@@ -448,19 +474,6 @@ fn tree_test(g: &Graph, v: u32, sc: &Scratch) -> TreeTest {
     }
     if in_neighbours > 1 {
         return TreeTest::Cycle;
-    }
-    // C5: on each face around v that T already meets, v's neighbour along that face
-    // (before or after v) is in T.
-    for e in g.outgoing(v) {
-        let he = &g.edges[e as usize];
-        if sc.face_count(he.face) == 0 {
-            continue;
-        }
-        let after = g.target(e);
-        let before = g.edges[he.prev as usize].origin;
-        if !sc.is_in(after) && !sc.is_in(before) {
-            return TreeTest::SplitsFace;
-        }
     }
     TreeTest::Ok
 }

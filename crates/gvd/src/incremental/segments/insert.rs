@@ -2,21 +2,22 @@
 //! inserted before it (steps B1, B2, A2–A4 of the wiki page, with `H(v) = d(v, s) −
 //! t(v)` for the distance `d` to the open segment and the clearance `t` of `v`).
 //!
-//! * B1: the seed is the vertex of least `H` on the faces around the segment's first
-//!   endpoint (the endpoint's own face and those of segments already inserted there),
-//!   else around its other endpoint, else on the faces near them.
+//! * B1: the seed is the vertex of least `H` on the faces around the segment's
+//!   endpoints (their own faces and those of segments already inserted there), else on
+//!   the faces near them, else a new vertex where an edge there crosses the segment.
 //! * B2: `T` grows from the seed, most negative `H` first, by vertices with `H < 0`
-//!   that keep `T` a tree (C4: at most one edge to `T`) and keep every old face's
-//!   remainder connected (C5: on a face that already meets `T`, the vertex must be next
-//!   to a `T` vertex along that face). Vertices next to the vertex at infinity stay
-//!   out (they lie near the far generators, far outside the domain).
+//!   that keep `T` a tree (C4: at most one edge to `T`). An edge into `T` whose middle
+//!   the segment does not claim first gets a vertex there, kept out. C5 of the point
+//!   algorithm does not hold here: the new region can wrap around an old face, so
+//!   another old face may meet `T` in several chains. Vertices next to the vertex at
+//!   infinity stay out (they lie near the far generators, far outside the domain).
 //! * A2: on every edge from `T` to a vertex out of `T`, the new vertex is the point of
 //!   the edge's bisector where it leaves the segment's region: where the clearance
 //!   equals the distance to the segment, or where the foot leaves the segment (the
 //!   endpoints' separators), found by bisection along the bisector's offset-parameter
 //!   form.
-//! * A3, A4: on every old face that meets `T`, the chain of `T` vertices is replaced by
-//!   one new edge (the bisector of the face's generator and the segment); the twins of
+//! * A3, A4: on every old face that meets `T`, each chain of `T` vertices is replaced
+//!   by one new edge (the bisector of the face's generator and the segment); the twins of
 //!   the new edges form the segment's face; `T` and its edges are deleted.
 //!
 //! Every decision that shapes the graph is combinatorial, so the graph stays a valid
@@ -33,7 +34,7 @@ use std::collections::BinaryHeap;
 pub(crate) enum InsertError {
     /// No vertex near the endpoints is nearer to the segment than to its generators.
     NoSeed,
-    /// The conflict tree does not meet an old face in one chain.
+    /// A chain of the conflict tree along an old face does not end at a new vertex.
     BrokenChain,
 }
 

@@ -181,6 +181,16 @@ fn corpus_scenes_are_sound() {
     }
 }
 
+/// Dense random segments (`gen_scene.py segments 1000 --seed 1`), where endpoints come
+/// within 1e-6 of other segments; and nine of them around such a near T-junction. A
+/// point that close keeps a needle of its face through the new segment's region, whose
+/// crossing of an old edge splits the conflict tree.
+#[test]
+fn dense_and_near_touching_segments_are_sound() {
+    assert_sound("segments-near-touching-9");
+    assert_sound("segments-dense-1000");
+}
+
 fn json_scene(mode: &str, sites: &str) -> Scene {
     Scene::from_json(&format!(
         r#"{{"domain": [-2, -2, 2, 2], "epsilon": 0.001, "mode": "{mode}", "sites": [{sites}]}}"#

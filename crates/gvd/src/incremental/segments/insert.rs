@@ -25,6 +25,7 @@
 
 use super::geometry::{Bisector, Gen, Line, Shape};
 use super::graph::{Graph, GHOST, NONE};
+use super::pieces::claimed_pieces;
 use crate::geom::Point;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -177,7 +178,7 @@ pub(crate) fn insert_segment(
             let (from, to) = (g.vertices[u as usize].at, g.vertices[w as usize].at);
             let (gl, gr) = (g.faces[left as usize].gen, g.faces[right as usize].gen);
             let bis = sites.bisector(gl, gr, from.lerp(to, 0.5));
-            let (at, t) = bis.boundary(from, to, inside);
+            let (at, t) = leave_region(&bis, from, to, &line, inside);
             if at == to {
                 scratch.overrides += 1;
             }
@@ -411,6 +412,9 @@ fn grow_tree(
             }
             split_unclaimed_edges(g, sites, line, v, sc);
             match tree_test(g, v, sc) {
+                // Its only edges to T were split: it may join later through another
+                // neighbour (pushed again then).
+                TreeTest::Detached => continue,
                 TreeTest::Cycle => {
                     sc.decide(v, false);
                     sc.overrides += 1;
@@ -430,13 +434,10 @@ fn grow_tree(
     }
 }
 
-/// Fractions of an edge sampled for points the segment does not claim.
-const EDGE_SAMPLES: [f64; 7] = [0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875];
-
 /// An edge from `v` to `T` whose two ends the segment claims may leave its region in
-/// the middle (a bisector bending around an endpoint, or passing a site): `T` would
-/// then swallow a piece that stays. Such an edge gets a vertex of degree two at an
-/// unclaimed sample, kept out of `T`.
+/// the middle (a bisector bending around an endpoint, or crossing the needle that a
+/// point next to the segment keeps): `T` would then swallow a piece that stays. Such
+/// an edge gets a vertex of degree two in its unclaimed part, kept out of `T`.
 fn split_unclaimed_edges(g: &mut Graph, sites: &Sites, line: &Line, v: u32, sc: &mut Scratch) {
     let to_tree: Vec<u32> = g.outgoing(v).filter(|&e| sc.is_in(g.target(e))).collect();
     for e in to_tree {
@@ -447,11 +448,12 @@ fn split_unclaimed_edges(g: &mut Graph, sites: &Sites, line: &Line, v: u32, sc: 
         let left = g.faces[g.edges[e as usize].face as usize].gen;
         let right = g.faces[g.edges[g.edges[e as usize].twin as usize].face as usize].gen;
         let bis = sites.bisector(left, right, from.lerp(to, 0.5));
-        let unclaimed = EDGE_SAMPLES
-            .iter()
-            .map(|&l| bis.at_fraction(from, to, l))
-            .find(|&(x, t)| !line.claims(x, t));
-        if let Some((at, t)) = unclaimed {
+        let unclaimed = claimed_pieces(&bis, from, to, line)
+            .into_iter()
+            .filter(|p| !p.claimed)
+            .max_by(|a, b| (a.hi - a.lo).total_cmp(&(b.hi - b.lo)));
+        if let Some(piece) = unclaimed {
+            let (at, t) = bis.at_fraction(from, to, piece.mid());
             let x = g.split_edge(e, at, t);
             sc.fit(g);
             sc.decide(x, false);
@@ -459,8 +461,31 @@ fn split_unclaimed_edges(g: &mut Graph, sites: &Sites, line: &Line, v: u32, sc: 
     }
 }
 
+/// A2's new vertex on the edge from `from` (in `T`) to `to` (out of it): where the
+/// bisector first leaves the segment's region, refined by bisection between the middles
+/// of the last claimed and the first unclaimed piece; `to` when no piece is unclaimed
+/// (the signs of the two ends disagree with the pieces: topology wins).
+fn leave_region(
+    bis: &Bisector,
+    from: Point,
+    to: Point,
+    line: &Line,
+    inside: impl Fn(Point, f64) -> bool,
+) -> (Point, f64) {
+    let pieces = claimed_pieces(bis, from, to, line);
+    let Some(k) = pieces.iter().position(|p| !p.claimed) else {
+        return (to, bis.at_fraction(from, to, 1.0).1);
+    };
+    let lo = if k == 0 { 0.0 } else { pieces[k - 1].mid() };
+    let (a, _) = bis.at_fraction(from, to, lo);
+    let (b, _) = bis.at_fraction(from, to, pieces[k].mid());
+    bis.boundary(a, b, inside)
+}
+
 enum TreeTest {
     Ok,
+    /// No edge to `T` (they were all split): joining would disconnect `T`.
+    Detached,
     /// C4 fails: `v` has two or more edges to `T`.
     Cycle,
 }
@@ -473,8 +498,9 @@ fn tree_test(g: &Graph, v: u32, sc: &Scratch) -> TreeTest {
             in_neighbours += 1;
         }
     }
-    if in_neighbours > 1 {
-        return TreeTest::Cycle;
+    match in_neighbours {
+        0 => TreeTest::Detached,
+        1 => TreeTest::Ok,
+        _ => TreeTest::Cycle,
     }
-    TreeTest::Ok
 }

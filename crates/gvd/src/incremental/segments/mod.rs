@@ -18,6 +18,7 @@ mod crossings;
 mod geometry;
 mod graph;
 mod insert;
+mod pieces;
 
 pub(crate) use crossings::{find_conflict, Conflict};
 pub(crate) use geometry::Gen;

@@ -1,0 +1,200 @@
+//! Where a new segment claims a bisector piece: the piece from `from` to `to` splits
+//! into intervals of its fraction `λ ∈ [0, 1]`, each wholly claimed or wholly not.
+//!
+//! Along a line or parabola bisector the point `x(λ)` and everything the claim of
+//! segment `s` (foot `f`, signed offset `h`, `0 < f < len` and `|h| < t`) depends on is
+//! polynomial in `λ` of degree at most two:
+//!
+//! * parabolas: `x`, `t`, `f` and `h` are quadratics; `|h| < t` changes where
+//!   `t − h` or `t + h` vanishes;
+//! * lines (and chords): `x`, `f` and `h` are linear and `t²` is quadratic; `|h| < t`
+//!   changes where `h² − t²` vanishes.
+//!
+//! So the claim can only change at roots of a few quadratics, each interpolated from
+//! three samples; every interval between consecutive roots is then tested at its middle
+//! with the exact predicate. This finds claimed or unclaimed intervals of any width,
+//! such as the needle a point next to the segment keeps (the parabola around it is
+//! about `√(δ·y)` wide at distance `y`, for the point's distance `δ` to the segment),
+//! which samples at fixed fractions miss.
+
+use super::geometry::{Bisector, Line};
+use crate::geom::Point;
+
+/// An interval of fractions, claimed by the segment or not.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Piece {
+    pub(crate) lo: f64,
+    pub(crate) hi: f64,
+    pub(crate) claimed: bool,
+}
+
+impl Piece {
+    pub(crate) fn mid(&self) -> f64 {
+        0.5 * (self.lo + self.hi)
+    }
+}
+
+/// The maximal claimed and unclaimed intervals of the bisector piece from `from` to
+/// `to`, in order from `from`.
+pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line) -> Vec<Piece> {
+    let sample = |lambda: f64| {
+        let (x, t) = bis.at_fraction(from, to, lambda);
+        let (f, h) = line.coords(x);
+        (f, h, t)
+    };
+    let s = [sample(0.0), sample(0.5), sample(1.0)];
+    let quad = |value: &dyn Fn((f64, f64, f64)) -> f64| interpolate(s.map(value));
+    let mut breaks: Vec<f64> = Vec::with_capacity(10);
+    let mut add_roots = |c: [f64; 3]| {
+        breaks.extend(
+            quadratic_roots(c)
+                .into_iter()
+                .filter(|r| *r > 0.0 && *r < 1.0),
+        )
+    };
+    add_roots(quad(&|(f, _, _)| f));
+    add_roots(quad(&|(f, _, _)| f - line.len));
+    match bis {
+        Bisector::Parabola { .. } => {
+            add_roots(quad(&|(_, h, t)| t - h));
+            add_roots(quad(&|(_, h, t)| t + h));
+        }
+        Bisector::Line { .. } | Bisector::Chord { .. } => {
+            add_roots(quad(&|(_, h, t)| h * h - t * t));
+        }
+    }
+    breaks.push(0.0);
+    breaks.push(1.0);
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+
+    let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len());
+    for w in breaks.windows(2) {
+        let (x, t) = bis.at_fraction(from, to, 0.5 * (w[0] + w[1]));
+        let claimed = line.claims(x, t);
+        match pieces.last_mut() {
+            Some(last) if last.claimed == claimed => last.hi = w[1],
+            _ => pieces.push(Piece {
+                lo: w[0],
+                hi: w[1],
+                claimed,
+            }),
+        }
+    }
+    pieces
+}
+
+/// The coefficients `[c0, c1, c2]` of the quadratic through `(0, y0)`, `(½, y½)`,
+/// `(1, y1)`.
+fn interpolate([y0, yh, y1]: [f64; 3]) -> [f64; 3] {
+    [y0, 4.0 * yh - 3.0 * y0 - y1, 2.0 * (y0 + y1) - 4.0 * yh]
+}
+
+/// The real roots of `c0 + c1·λ + c2·λ²` (a leading coefficient negligible against the
+/// others makes it linear), by the cancellation-free formula.
+fn quadratic_roots([c0, c1, c2]: [f64; 3]) -> Vec<f64> {
+    let scale = c0.abs().max(c1.abs()).max(c2.abs());
+    if scale == 0.0 || !scale.is_finite() {
+        return Vec::new();
+    }
+    if c2.abs() <= 1e-12 * scale {
+        return if c1 != 0.0 {
+            vec![-c0 / c1]
+        } else {
+            Vec::new()
+        };
+    }
+    let disc = c1 * c1 - 4.0 * c2 * c0;
+    if disc < 0.0 {
+        return Vec::new();
+    }
+    let q = -0.5 * (c1 + disc.sqrt().copysign(c1));
+    if q == 0.0 {
+        return vec![0.0];
+    }
+    vec![q / c2, c0 / q]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::incremental::segments::geometry::Shape;
+
+    #[test]
+    fn roots_of_quadratics() {
+        let mut r = quadratic_roots([2.0, -3.0, 1.0]);
+        r.sort_by(f64::total_cmp);
+        assert_eq!(r, vec![1.0, 2.0]);
+        assert_eq!(quadratic_roots([1.0, 0.0, 1.0]), Vec::<f64>::new());
+        assert_eq!(quadratic_roots([-1.0, 2.0, 0.0]), vec![0.5]);
+    }
+
+    /// A point 1e-7 from the segment keeps a needle about 1e-4 wide around it; the
+    /// bisector of that point and another one crosses the needle in the middle of an
+    /// otherwise claimed edge.
+    #[test]
+    fn finds_a_needle_in_a_claimed_edge() {
+        let line = Line::new(Point::new(0.0, 0.0), Point::new(1.0, 0.0), [0, 1]);
+        let p = Point::new(0.5, 1e-7);
+        let q = Point::new(0.5, 0.02);
+        let bis = Bisector::of(Shape::Point(2, p), Shape::Point(3, q), p.lerp(q, 0.5));
+        let (from, to) = (Point::new(0.3, 0.01), Point::new(0.7, 0.01));
+        let pieces = claimed_pieces(&bis, from, to, &line);
+        assert_eq!(pieces.len(), 3, "{pieces:?}");
+        assert!(pieces[0].claimed && !pieces[1].claimed && pieces[2].claimed);
+        let needle = pieces[1];
+        assert!(needle.hi - needle.lo < 2e-3, "{needle:?}");
+        let (x, t) = bis.at_fraction(from, to, needle.mid());
+        assert!((x.x - 0.5).abs() < 1e-4 && !line.claims(x, t));
+    }
+
+    /// On random point/point, point/segment and segment/segment bisectors, dense samples
+    /// inside each piece agree with its claim.
+    #[test]
+    fn pieces_agree_with_dense_samples() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut point = || Point::new(rnd(), rnd());
+        let line = Line::new(Point::new(0.3, 0.4), Point::new(0.7, 0.55), [0, 1]);
+        let mut checked = 0;
+        for case in 0..300 {
+            let (p, q) = (point(), point());
+            let other = Line::new(point(), point(), [4, 5]);
+            let third = Line::new(point(), point(), [6, 7]);
+            let bis = match case % 3 {
+                0 => Bisector::of(Shape::Point(2, p), Shape::Point(3, q), p),
+                1 => Bisector::of(Shape::Point(2, p), Shape::Segment(&other), p),
+                _ => Bisector::of(Shape::Segment(&third), Shape::Segment(&other), p),
+            };
+            let (from, to) = (point(), point());
+            // Project the ends onto the bisector through its own parametrization.
+            let (a, _) = bis.at_fraction(from, to, 0.0);
+            let (b, _) = bis.at_fraction(from, to, 1.0);
+            if !(a.x.is_finite() && b.x.is_finite()) || a.dist(b) > 10.0 {
+                continue;
+            }
+            let pieces = claimed_pieces(&bis, a, b, &line);
+            for piece in &pieces {
+                for k in 1..200 {
+                    let lambda = piece.lo + (piece.hi - piece.lo) * k as f64 / 200.0;
+                    let (x, t) = bis.at_fraction(a, b, lambda);
+                    let margin = (line.coords(x).1.abs() - t).abs();
+                    if margin > 1e-9 {
+                        assert_eq!(
+                            line.claims(x, t),
+                            piece.claimed,
+                            "case {case}: {pieces:?} at {lambda}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
+    }
+}

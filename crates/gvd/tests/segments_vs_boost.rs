@@ -380,7 +380,7 @@ impl Features {
             point_index: HashMap::new(),
             segments: Vec::new(),
         };
-        let mut add = |f: &mut Features, p: IPt, owner: usize| -> usize {
+        let add = |f: &mut Features, p: IPt, owner: usize| -> usize {
             *f.point_index.entry(p).or_insert_with(|| {
                 f.points.push((p, owner));
                 f.points.len() - 1

@@ -462,6 +462,8 @@ struct Outcome {
     gvd_compared: usize,
     skipped_ambiguous: usize,
     pairs_required: usize,
+    /// The largest distance between matched vertices (boost -> gvd).
+    worst_match: f64,
     /// gvd edges no longer than `tol` (left out of the adjacency comparison).
     zero_length_edges: usize,
     problems: Vec<String>,
@@ -535,6 +537,7 @@ fn compare(case: &Case, g: &VoronoiComplex, b: &Diagram) -> Outcome {
             .min_by(|a, b| a.0.total_cmp(&b.0));
         match best {
             Some((d, sites)) if d <= tol => {
+                out.worst_match = out.worst_match.max(d);
                 if *sites != labels {
                     out.problems.push(format!(
                         "vertex at ({:.6}, {:.6}): gvd lists sites {sites:?}, brute force {labels:?}",
@@ -651,6 +654,15 @@ fn assert_agree(name: &str, case: &Case) {
             out.problems.iter().take(12).cloned().collect::<Vec<_>>().join("\n")
         );
     }
+    println!(
+        "{name}: {} + {} vertices agree (worst distance {:.2e}), {} adjacent pairs, {} ambiguous skipped, {} zero-length gvd edges",
+        out.boost_compared,
+        out.gvd_compared,
+        out.worst_match,
+        out.pairs_required,
+        out.skipped_ambiguous,
+        out.zero_length_edges
+    );
     // Not vacuous: a site-level diagram of this size has vertices and adjacencies.
     assert!(
         out.boost_compared >= 3,
@@ -843,6 +855,20 @@ fn failing_polylines_9() {
 fn failing_segments_8_shared_endpoints_point() {
     let name = "failing/segments-8-shared-endpoints-point-wrong-vertex";
     assert_agree(name, &case_from_file(name));
+}
+
+/// Three segments from one point and a fourth chained to one of them: besides the four
+/// vertices, gvd reports an edge of length ~1e-12 between two vertices at the shared
+/// endpoint (8118, 2696) (boostvoronoi has no such edge; `gvd verify` gives it an
+/// infinite error in larger scenes, e.g. `shared-20-pool12-seed1`).
+#[test]
+#[ignore = "known failure: zero-length edge between two vertices at a shared endpoint"]
+fn failing_zero_length_edge_at_shared_endpoint() {
+    let name = "failing/segments-spike3-zero-length-edge";
+    let case = case_from_file(name);
+    let out = compare(&case, &case.gvd(), &case.boost());
+    assert!(out.problems.is_empty(), "{:?}", out.problems);
+    assert_eq!(out.zero_length_edges, 0, "zero-length gvd edges");
 }
 
 /// The comparison can fail: a vertex moved by 20 tol, and a pair of sites whose edges

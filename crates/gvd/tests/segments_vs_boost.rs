@@ -642,7 +642,7 @@ fn assert_agree(name: &str, case: &Case) {
     if !out.problems.is_empty() {
         let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("segments_vs_boost");
         std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join(format!("{name}.json"));
+        let path = dir.join(format!("{}.json", name.replace('/', "-")));
         std::fs::write(&path, case.scene_json()).unwrap();
         panic!(
             "{name}: {} problems (scene written to {}), compared {} boost / {} gvd vertices, overrides {:?}:\n{}",

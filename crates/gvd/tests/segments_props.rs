@@ -677,14 +677,14 @@ fn failing_point_4e_6_above_segment() {
 }
 
 #[test]
-#[ignore = "known failure: 8-segment spike, vertex (0.3815, -0.1561) of sites [0, 6, 7] is 0.25 (251 eps) from a tie"]
+#[ignore = "known failure: 8-segment spike, edge of sites [6, 7] 78 eps off at (0.1408, -0.3391); gvd verify: vertex (0.3815, -0.1561) of [0, 6, 7] 251 eps"]
 fn failing_spike_8_segments() {
     let sc = failing_scene("spike-8-segments");
     check_scene(&sc).unwrap();
 }
 
 #[test]
-#[ignore = "known failure: 3-segment spike (two rays 0.08 rad apart), vertex (0.5809, 0.5754) of sites [0, 1, 2] is 140 eps from a tie"]
+#[ignore = "known failure: 3-segment spike (two rays 0.08 rad apart), edge of sites [2, 1] 140 eps off at (-0.7927, 0.8363)"]
 fn failing_spike_3_segments_narrow() {
     check_scene(&failing_scene("spike-3-segments-narrow")).unwrap();
 }

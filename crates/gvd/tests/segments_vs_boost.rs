@@ -736,12 +736,9 @@ fn case_from_file(name: &str) -> Case {
     Case { sites, grid }
 }
 
-// Seeds are split by outcome: the passing ones guard against regressions, the failing
-// ones (engine bugs, see the ignored tests below) stay here so that a fix shows up.
-
 #[test]
 fn disjoint_segments_20() {
-    for seed in [3, 4, 5, 6, 8, 12] {
+    for seed in 1..=12 {
         assert_agree(
             &format!("disjoint-20-seed{seed}"),
             &disjoint_case(seed, 20, 5),
@@ -751,44 +748,7 @@ fn disjoint_segments_20() {
 
 #[test]
 fn disjoint_segments_100() {
-    assert_agree("disjoint-100-seed5", &disjoint_case(5, 100, 20));
-}
-
-#[test]
-fn segments_sharing_endpoints() {
-    for (seed, n, k) in [(1, 20, 12), (5, 20, 12)] {
-        assert_agree(
-            &format!("shared-{n}-pool{k}-seed{seed}"),
-            &shared_case(seed, n, k),
-        );
-    }
-}
-
-#[test]
-fn polylines_with_points() {
-    for (seed, count, len) in [(1, 5, 6), (2, 10, 8), (4, 5, 6)] {
-        assert_agree(
-            &format!("polylines-{count}x{len}-seed{seed}"),
-            &polyline_case(seed, count, len),
-        );
-    }
-}
-
-#[test]
-#[ignore = "known failure: wrong vertices (equidistance broken, topology_overrides > 0) in 6 of 12 random 20-segment scenes"]
-fn disjoint_segments_20_failing_seeds() {
-    for seed in [1, 2, 7, 9, 10, 11] {
-        assert_agree(
-            &format!("disjoint-20-seed{seed}"),
-            &disjoint_case(seed, 20, 5),
-        );
-    }
-}
-
-#[test]
-#[ignore = "known failure: wrong vertices and missing adjacencies in 5 of 6 random 100-segment scenes"]
-fn disjoint_segments_100_failing_seeds() {
-    for seed in [1, 2, 3, 4, 6] {
+    for seed in 1..=6 {
         assert_agree(
             &format!("disjoint-100-seed{seed}"),
             &disjoint_case(seed, 100, 20),
@@ -797,7 +757,6 @@ fn disjoint_segments_100_failing_seeds() {
 }
 
 #[test]
-#[ignore = "known failure: 19-42 wrong or missing vertices in every random 500-segment scene"]
 fn disjoint_segments_500() {
     for seed in 1..=3 {
         assert_agree(
@@ -808,9 +767,15 @@ fn disjoint_segments_500() {
 }
 
 #[test]
-#[ignore = "known failure: wrong vertices beside shared endpoints (spikes, fans) with 40 or more segments"]
-fn segments_sharing_endpoints_failing_seeds() {
-    for (seed, n, k) in [(2, 40, 15), (3, 100, 40), (4, 200, 80), (6, 30, 20)] {
+fn segments_sharing_endpoints() {
+    for (seed, n, k) in [
+        (1, 20, 12),
+        (5, 20, 12),
+        (2, 40, 15),
+        (3, 100, 40),
+        (4, 200, 80),
+        (6, 30, 20),
+    ] {
         assert_agree(
             &format!("shared-{n}-pool{k}-seed{seed}"),
             &shared_case(seed, n, k),
@@ -819,9 +784,8 @@ fn segments_sharing_endpoints_failing_seeds() {
 }
 
 #[test]
-#[ignore = "known failure: wrong vertices in random polylines (30x10 seed 3, 10x8 seed 5)"]
-fn polylines_failing_seeds() {
-    for (seed, count, len) in [(3, 30, 10), (5, 10, 8)] {
+fn polylines_with_points() {
+    for (seed, count, len) in [(1, 5, 6), (2, 10, 8), (4, 5, 6), (3, 30, 10), (5, 10, 8)] {
         assert_agree(
             &format!("polylines-{count}x{len}-seed{seed}"),
             &polyline_case(seed, count, len),
@@ -829,42 +793,39 @@ fn polylines_failing_seeds() {
     }
 }
 
+// Scenes that once failed (wrong or missing vertices from a conflict tree broken into
+// two pieces, see `segments/insert.rs`), minimised by removing sites.
+
 #[test]
-#[ignore = "known failure: 9 disjoint segments, gvd vertex (33580.80, 25818.60) of sites 3,7,8 is not a Voronoi vertex"]
-fn failing_segments_9_disjoint() {
-    let name = "failing/segments-9-disjoint-wrong-vertices";
+fn regression_segments_9_disjoint() {
+    let name = "regressions/segments-9-disjoint-wrong-vertices";
     assert_agree(name, &case_from_file(name));
 }
 
 #[test]
-#[ignore = "known failure: 12 disjoint segments and a point, boost vertex (80156.15, 8594.45) of sites 5,6,12 missing"]
-fn failing_segments_13_disjoint_point() {
-    let name = "failing/segments-13-disjoint-point-wrong-vertices";
+fn regression_segments_13_disjoint_point() {
+    let name = "regressions/segments-13-disjoint-point-wrong-vertices";
     assert_agree(name, &case_from_file(name));
 }
 
 #[test]
-#[ignore = "known failure: 9 polylines, gvd vertices of sites 1,2,7 that are not Voronoi vertices"]
-fn failing_polylines_9() {
-    let name = "failing/polylines-9-wrong-vertices";
+fn regression_polylines_9() {
+    let name = "regressions/polylines-9-wrong-vertices";
     assert_agree(name, &case_from_file(name));
 }
 
 #[test]
-#[ignore = "known failure: 8 segments sharing endpoints and a point, gvd vertex (5457.38, 3989.82) of sites 0,2,8 is not a Voronoi vertex"]
-fn failing_segments_8_shared_endpoints_point() {
-    let name = "failing/segments-8-shared-endpoints-point-wrong-vertex";
+fn regression_segments_8_shared_endpoints_point() {
+    let name = "regressions/segments-8-shared-endpoints-point-wrong-vertex";
     assert_agree(name, &case_from_file(name));
 }
 
-/// Three segments from one point and a fourth chained to one of them: besides the four
-/// vertices, gvd reports an edge of length ~1e-12 between two vertices at the shared
-/// endpoint (8118, 2696) (boostvoronoi has no such edge; `gvd verify` gives it an
-/// infinite error in larger scenes, e.g. `shared-20-pool12-seed1`).
+/// Three segments from one point and a fourth chained to one of them: once gave an edge
+/// of length ~1e-12 between two vertices at the shared endpoint (8118, 2696), which
+/// boostvoronoi does not have.
 #[test]
-#[ignore = "known failure: zero-length edge between two vertices at a shared endpoint"]
-fn failing_zero_length_edge_at_shared_endpoint() {
-    let name = "failing/segments-spike3-zero-length-edge";
+fn regression_zero_length_edge_at_shared_endpoint() {
+    let name = "regressions/segments-spike3-zero-length-edge";
     let case = case_from_file(name);
     let out = compare(&case, &case.gvd(), &case.boost());
     assert!(out.problems.is_empty(), "{:?}", out.problems);

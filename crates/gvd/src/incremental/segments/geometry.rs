@@ -265,16 +265,31 @@ impl Bisector {
     pub(crate) fn polyline(&self, from: Point, to: Point, tol: f64) -> Vec<Point> {
         match self {
             Bisector::Line { .. } | Bisector::Chord { .. } => vec![from, to],
-            Bisector::Parabola { hp, .. } => {
+            Bisector::Parabola { up, hp, .. } => {
                 let (u0, u1) = self.range(from, to);
                 // Chord sagitta over a step Δu is at most Δu²·κ/8 with curvature
-                // κ ≤ 1/|h_p|.
+                // κ ≤ 1/|h_p|. The apex (u = u_p) is always a vertex of the polyline:
+                // a chord across it could touch the focus on a parabola narrower
+                // than `tol`.
                 let step = (8.0 * tol * hp.abs()).sqrt();
-                let n = ((u1 - u0).abs() / step).ceil().clamp(1.0, 1e5) as usize;
-                let mut pts = Vec::with_capacity(n + 1);
-                pts.push(from);
-                for k in 1..n {
-                    pts.push(self.point(from, to, u0 + (u1 - u0) * k as f64 / n as f64).0);
+                let apex = (up - u0) * (up - u1) < 0.0;
+                let stops = if apex {
+                    vec![u0, *up, u1]
+                } else {
+                    vec![u0, u1]
+                };
+                let mut pts = vec![from];
+                for w in stops.windows(2) {
+                    let n = ((w[1] - w[0]).abs() / step).ceil().clamp(1.0, 1e5) as usize;
+                    for k in 1..n {
+                        pts.push(
+                            self.point(from, to, w[0] + (w[1] - w[0]) * k as f64 / n as f64)
+                                .0,
+                        );
+                    }
+                    if w[1] != u1 {
+                        pts.push(self.point(from, to, w[1]).0);
+                    }
                 }
                 pts.push(to);
                 pts

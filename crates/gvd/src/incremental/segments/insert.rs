@@ -463,8 +463,8 @@ fn split_unclaimed_edges(g: &mut Graph, sites: &Sites, line: &Line, v: u32, sc: 
 
 /// A2's new vertex on the edge from `from` (in `T`) to `to` (out of it): where the
 /// bisector first leaves the segment's region, refined by bisection between the middles
-/// of the last claimed and the first unclaimed piece; `to` when no piece is unclaimed
-/// (the signs of the two ends disagree with the pieces: topology wins).
+/// of the last claimed and the first unclaimed piece; by bisection over the whole edge
+/// when rounding hid the unclaimed piece (`to` if it is claimed too: topology wins).
 fn leave_region(
     bis: &Bisector,
     from: Point,
@@ -474,7 +474,7 @@ fn leave_region(
 ) -> (Point, f64) {
     let pieces = claimed_pieces(bis, from, to, line);
     let Some(k) = pieces.iter().position(|p| !p.claimed) else {
-        return (to, bis.at_fraction(from, to, 1.0).1);
+        return bis.boundary(from, to, inside);
     };
     let lo = if k == 0 { 0.0 } else { pieces[k - 1].mid() };
     let (a, _) = bis.at_fraction(from, to, lo);

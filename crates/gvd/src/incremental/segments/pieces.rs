@@ -44,13 +44,20 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
     };
     let s = [sample(0.0), sample(0.5), sample(1.0)];
     let quad = |value: &dyn Fn((f64, f64, f64)) -> f64| interpolate(s.map(value));
-    let mut breaks: Vec<f64> = Vec::with_capacity(10);
+    let mut breaks: Vec<f64> = Vec::with_capacity(12);
+    let mut extrema: Vec<f64> = Vec::with_capacity(4);
     let mut add_roots = |c: [f64; 3]| {
         breaks.extend(
             quadratic_roots(c)
                 .into_iter()
                 .filter(|r| *r > 0.0 && *r < 1.0),
-        )
+        );
+        // Two roots closer than rounding can resolve (a piece narrower than about
+        // 1e-8 of the edge) leave no break: the extremum between them is tested too.
+        let top = -c[1] / (2.0 * c[2]);
+        if top > 0.0 && top < 1.0 {
+            extrema.push(top);
+        }
     };
     add_roots(quad(&|(f, _, _)| f));
     add_roots(quad(&|(f, _, _)| f - line.len));
@@ -63,23 +70,27 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
             add_roots(quad(&|(_, h, t)| h * h - t * t));
         }
     }
+    breaks.extend_from_slice(&extrema);
     breaks.push(0.0);
     breaks.push(1.0);
     breaks.sort_by(f64::total_cmp);
     breaks.dedup();
 
+    let claims_at = |lambda: f64| {
+        let (x, t) = bis.at_fraction(from, to, lambda);
+        line.claims(x, t)
+    };
     let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len());
+    let mut push = |lo: f64, hi: f64, claimed: bool| match pieces.last_mut() {
+        Some(last) if last.claimed == claimed => last.hi = hi,
+        _ => pieces.push(Piece { lo, hi, claimed }),
+    };
     for w in breaks.windows(2) {
-        let (x, t) = bis.at_fraction(from, to, 0.5 * (w[0] + w[1]));
-        let claimed = line.claims(x, t);
-        match pieces.last_mut() {
-            Some(last) if last.claimed == claimed => last.hi = w[1],
-            _ => pieces.push(Piece {
-                lo: w[0],
-                hi: w[1],
-                claimed,
-            }),
+        if extrema.contains(&w[0]) {
+            // Zero-width when the claim there differs from the pieces on both sides.
+            push(w[0], w[0], claims_at(w[0]));
         }
+        push(w[0], w[1], claims_at(0.5 * (w[0] + w[1])));
     }
     pieces
 }

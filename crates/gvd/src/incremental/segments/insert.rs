@@ -1,4 +1,5 @@
-//! Insertion of one open segment into the diagram of its endpoints and the generators
+//! Insertion of one open segment (or arc, through [`NewSite`]) into the diagram of its
+//! endpoints and the generators
 //! inserted before it (steps B1, B2, A2–A4 of the wiki page, with `H(v) = d(v, s) −
 //! t(v)` for the distance `d` to the open segment and the clearance `t` of `v`).
 //!
@@ -25,7 +26,7 @@
 
 use super::geometry::{Bisector, Gen, Line, Shape};
 use super::graph::{Graph, GHOST, NONE};
-use super::pieces::claimed_pieces;
+use super::site::NewSite;
 use crate::geom::Point;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -74,10 +75,9 @@ impl Ord for Candidate {
 pub(crate) struct Sites<'a> {
     pub(crate) points: &'a [Point],
     pub(crate) lines: &'a [Line],
-    /// The segments inserted so far at each point generator.
-    pub(crate) at_point: &'a [Vec<u32>],
-    /// The face of each segment inserted so far (point generator `p`'s face is `p`).
-    pub(crate) face_of_segment: &'a [u32],
+    /// The faces of the segments and arcs inserted so far at each point generator
+    /// (point generator `p`'s own face is `p`).
+    pub(crate) faces_at_point: &'a [Vec<u32>],
 }
 
 impl Sites<'_> {
@@ -126,45 +126,44 @@ impl Scratch {
     }
 }
 
-/// Inserts segment `s` (its line `sites.lines[s]`); returns its new face.
-pub(crate) fn insert_segment(
+/// Inserts `site`, the generator `gen` (an open segment or arc whose endpoints are in
+/// the diagram); returns its new face.
+pub(crate) fn insert_site(
     g: &mut Graph,
     sites: &Sites,
-    s: u32,
+    site: &impl NewSite,
+    gen: Gen,
     scratch: &mut Scratch,
 ) -> Result<u32, InsertError> {
-    let line = sites.lines[s as usize];
     let h = |g: &Graph, v: u32| -> f64 {
         let vx = &g.vertices[v as usize];
         if v == GHOST || !vx.alive {
             return f64::INFINITY;
         }
-        line.open_distance(vx.at) - vx.t
+        site.open_distance(vx.at) - vx.t
     };
     // An endpoint without segments yet has a face around it whose vertices may all be
     // claimed (a parabolic edge can wrap around behind it); a vertex behind it on its
     // boundary, which the segment never claims, keeps T a tree.
-    let fresh = line.ends.map(|p| sites.at_point[p as usize].is_empty());
-    for (k, &p) in line.ends.iter().enumerate() {
+    let fresh = site
+        .ends()
+        .map(|p| sites.faces_at_point[p as usize].is_empty());
+    for (k, &p) in site.ends().iter().enumerate() {
         if fresh[k] {
-            let behind = if k == 0 { line.d * -1.0 } else { line.d };
-            split_behind(g, sites, p, behind);
+            split_behind(g, sites, p, site.away(k));
         }
     }
-    let seed = match find_seed(g, sites, &line, &h) {
+    let seed = match find_seed(g, sites, site, &h) {
         Some(v) => v,
-        None => split_crossing(g, sites, &line).ok_or(InsertError::NoSeed)?,
+        None => split_crossing(g, sites, site).ok_or(InsertError::NoSeed)?,
     };
     scratch.begin(g);
-    grow_tree(g, sites, &line, seed, &h, scratch);
+    grow_tree(g, sites, site, seed, &h, scratch);
 
     // A2: a new vertex on every edge leaving T.
     let new_face = g.faces.len() as u32;
-    g.faces.push(super::graph::Face {
-        gen: Gen::Segment(s),
-        edge: NONE,
-    });
-    let inside = |x: Point, t: f64| line.claims(x, t);
+    g.faces.push(super::graph::Face { gen, edge: NONE });
+    let inside = |x: Point, t: f64| site.claims(x, t);
     // (new vertex, the old half-edge now leaving it)
     let mut splits: Vec<(u32, u32)> = Vec::new();
     for &u in &scratch.tree {
@@ -178,7 +177,7 @@ pub(crate) fn insert_segment(
             let (from, to) = (g.vertices[u as usize].at, g.vertices[w as usize].at);
             let (gl, gr) = (g.faces[left as usize].gen, g.faces[right as usize].gen);
             let bis = sites.bisector(gl, gr, from.lerp(to, 0.5));
-            let (at, t) = leave_region(&bis, from, to, &line, inside);
+            let (at, t) = leave_region(&bis, from, to, site, inside);
             if at == to {
                 scratch.overrides += 1;
             }
@@ -246,7 +245,7 @@ pub(crate) fn insert_segment(
 
     // A fresh endpoint gets a vertex of its own, on its separator: later segments there
     // never claim it.
-    for (k, &p) in line.ends.iter().enumerate() {
+    for (k, &p) in site.ends().iter().enumerate() {
         if fresh[k] {
             if let Some(&(ne, _, _)) = new_edges.iter().find(|e| g.edges[e.0 as usize].face == p) {
                 g.split_edge(ne, sites.points[p as usize], 0.0);
@@ -296,15 +295,15 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
 /// When no vertex is claimed (the segment's region only cuts edges in their middle):
 /// a new vertex of degree two where an edge of a face around an endpoint crosses the
 /// open segment; it is claimed, being (almost) on the segment.
-fn split_crossing(g: &mut Graph, sites: &Sites, line: &Line) -> Option<u32> {
-    for f in endpoint_faces(sites, line) {
+fn split_crossing(g: &mut Graph, sites: &Sites, site: &impl NewSite) -> Option<u32> {
+    for f in endpoint_faces(sites, site) {
         for e in g.cycle(f).collect::<Vec<_>>() {
             let (a, b) = (g.edges[e as usize].origin, g.target(e));
             if a == GHOST || b == GHOST {
                 continue;
             }
             let (pa, pb) = (g.vertices[a as usize].at, g.vertices[b as usize].at);
-            let (sa, sb) = (line.coords(pa).1, line.coords(pb).1);
+            let (sa, sb) = (site.side(pa), site.side(pb));
             if sa * sb >= 0.0 || (sa * sb).is_nan() {
                 continue;
             }
@@ -314,8 +313,8 @@ fn split_crossing(g: &mut Graph, sites: &Sites, line: &Line) -> Option<u32> {
                 g.faces[other as usize].gen,
                 pa.lerp(pb, 0.5),
             );
-            let (at, t) = bis.boundary(pa, pb, |x, _| (line.coords(x).1 < 0.0) == (sa < 0.0));
-            if line.claims(at, t) {
+            let (at, t) = bis.boundary(pa, pb, |x, _| (site.side(x) < 0.0) == (sa < 0.0));
+            if site.claims(at, t) {
                 return Some(g.split_edge(e, at, t));
             }
         }
@@ -325,12 +324,11 @@ fn split_crossing(g: &mut Graph, sites: &Sites, line: &Line) -> Option<u32> {
 
 /// The faces around the segment's endpoints: theirs, and those of the segments
 /// inserted there before.
-fn endpoint_faces(sites: &Sites, line: &Line) -> Vec<u32> {
+fn endpoint_faces(sites: &Sites, site: &impl NewSite) -> Vec<u32> {
     let mut faces = Vec::new();
-    for &p in &line.ends {
+    for p in site.ends() {
         faces.push(p);
-        let segments = &sites.at_point[p as usize];
-        faces.extend(segments.iter().map(|&s| sites.face_of_segment[s as usize]));
+        faces.extend_from_slice(&sites.faces_at_point[p as usize]);
     }
     faces
 }
@@ -341,7 +339,7 @@ fn endpoint_faces(sites: &Sites, line: &Line) -> Vec<u32> {
 fn find_seed(
     g: &Graph,
     sites: &Sites,
-    line: &Line,
+    site: &impl NewSite,
     h: &impl Fn(&Graph, u32) -> f64,
 ) -> Option<u32> {
     let mut best: Option<(f64, u32)> = None;
@@ -354,7 +352,7 @@ fn find_seed(
             }
         }
     };
-    let start = endpoint_faces(sites, line);
+    let start = endpoint_faces(sites, site);
     for &f in &start {
         consider(f, &mut best);
     }
@@ -391,7 +389,7 @@ fn next_to_ghost(g: &Graph, v: u32) -> bool {
 fn grow_tree(
     g: &mut Graph,
     sites: &Sites,
-    line: &Line,
+    site: &impl NewSite,
     seed: u32,
     h: &impl Fn(&Graph, u32) -> f64,
     sc: &mut Scratch,
@@ -410,7 +408,7 @@ fn grow_tree(
                 sc.decide(v, false);
                 continue;
             }
-            split_unclaimed_edges(g, sites, line, v, sc);
+            split_unclaimed_edges(g, sites, site, v, sc);
             match tree_test(g, v, sc) {
                 // Its only edges to T were split: it may join later through another
                 // neighbour (pushed again then).
@@ -438,7 +436,13 @@ fn grow_tree(
 /// the middle (a bisector bending around an endpoint, or crossing the needle that a
 /// point next to the segment keeps): `T` would then swallow a piece that stays. Such
 /// an edge gets a vertex of degree two in its unclaimed part, kept out of `T`.
-fn split_unclaimed_edges(g: &mut Graph, sites: &Sites, line: &Line, v: u32, sc: &mut Scratch) {
+fn split_unclaimed_edges(
+    g: &mut Graph,
+    sites: &Sites,
+    site: &impl NewSite,
+    v: u32,
+    sc: &mut Scratch,
+) {
     let to_tree: Vec<u32> = g.outgoing(v).filter(|&e| sc.is_in(g.target(e))).collect();
     for e in to_tree {
         let (from, to) = (
@@ -448,7 +452,8 @@ fn split_unclaimed_edges(g: &mut Graph, sites: &Sites, line: &Line, v: u32, sc: 
         let left = g.faces[g.edges[e as usize].face as usize].gen;
         let right = g.faces[g.edges[g.edges[e as usize].twin as usize].face as usize].gen;
         let bis = sites.bisector(left, right, from.lerp(to, 0.5));
-        let unclaimed = claimed_pieces(&bis, from, to, line)
+        let unclaimed = site
+            .pieces(&bis, from, to)
             .into_iter()
             .filter(|p| !p.claimed)
             .max_by(|a, b| (a.hi - a.lo).total_cmp(&(b.hi - b.lo)));
@@ -469,10 +474,10 @@ fn leave_region(
     bis: &Bisector,
     from: Point,
     to: Point,
-    line: &Line,
+    site: &impl NewSite,
     inside: impl Fn(Point, f64) -> bool,
 ) -> (Point, f64) {
-    let pieces = claimed_pieces(bis, from, to, line);
+    let pieces = site.pieces(bis, from, to);
     let Some(k) = pieces.iter().position(|p| !p.claimed) else {
         return bis.boundary(from, to, inside);
     };

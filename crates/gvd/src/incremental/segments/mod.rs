@@ -19,6 +19,7 @@ mod geometry;
 mod graph;
 mod insert;
 mod pieces;
+mod site;
 
 pub(crate) use crossings::{find_conflict, Conflict};
 pub(crate) use geometry::Gen;
@@ -28,7 +29,7 @@ use crate::geom::{Aabb, Point};
 use crate::Error;
 use geometry::Line;
 use graph::{Graph, GHOST};
-use insert::{insert_segment, InsertError, Scratch, Sites};
+use insert::{insert_site, InsertError, Scratch, Sites};
 
 /// The diagram of points and non-crossing segments, as a general half-edge graph.
 pub(crate) struct SegmentDiagram {
@@ -82,30 +83,27 @@ impl SegmentDiagram {
                 Line::new(pd.pts[fa as usize], pd.pts[fb as usize], [fa, fb])
             })
             .collect();
-        let mut at_point: Vec<Vec<u32>> = vec![Vec::new(); pd.pts.len()];
-        let mut face_of_segment = vec![u32::MAX; segments.len()];
+        let mut faces_at_point: Vec<Vec<u32>> = vec![Vec::new(); pd.pts.len()];
         let mut scratch = Scratch::default();
         for s in insertion_order(segments.len()) {
             let sites = Sites {
                 points: &pd.pts,
                 lines: &lines,
-                at_point: &at_point,
-                face_of_segment: &face_of_segment,
+                faces_at_point: &faces_at_point,
             };
-            match insert_segment(&mut graph, &sites, s as u32, &mut scratch) {
-                Ok(f) => face_of_segment[s] = f,
-                Err(e) => {
+            let gen = Gen::Segment(s as u32);
+            let face =
+                insert_site(&mut graph, &sites, &lines[s], gen, &mut scratch).map_err(|e| {
                     let why = match e {
                         InsertError::NoSeed => "no Voronoi vertex nearer to it was found",
                         InsertError::BrokenChain => "its conflict region was not a tree",
                     };
-                    return Err(Error::Internal(format!(
+                    Error::Internal(format!(
                         "segment generator {s} could not be inserted: {why}"
-                    )));
-                }
-            }
+                    ))
+                })?;
             for &p in &lines[s].ends {
-                at_point[p as usize].push(s as u32);
+                faces_at_point[p as usize].push(face);
             }
         }
         if let Err(e) = graph.check() {
@@ -162,8 +160,7 @@ impl SegmentDiagram {
         let sites = Sites {
             points: &self.points,
             lines: &self.lines,
-            at_point: &[],
-            face_of_segment: &[],
+            faces_at_point: &[],
         };
         let mut edges = Vec::new();
         for (h, he) in g.edges.iter().enumerate() {

@@ -1,7 +1,7 @@
 //! Insertion of one open segment (or arc, through [`NewSite`]) into the diagram of its
-//! endpoints and the generators
-//! inserted before it (steps B1, B2, A2–A4 of the wiki page, with `H(v) = d(v, s) −
-//! t(v)` for the distance `d` to the open segment and the clearance `t` of `v`).
+//! endpoints and the generators inserted before it (steps B1, B2, A2–A4 of the wiki
+//! page, with `H(v) = d(v, s) − t(v)` for the distance `d` to the open segment and the
+//! clearance `t` of `v`).
 //!
 //! * B1: the seed is the vertex of least `H` on the faces around the segment's
 //!   endpoints (their own faces and those of segments already inserted there), else on

@@ -19,10 +19,10 @@
 //! * a second arc `(c₂, r₂)`, `δ = c₂ − c`: `|x − c₂| − r₂ = s·(ρ − r)` with `s = ±1`,
 //!   `k = r₂ − s·r`, gives `N = k² − |δ|²`, `M = −2sk`, `w = 2δ`.
 //!
-//! The sign `s` is that of the least residual `|F_s(near)|` of the unsquared equation
-//! (`F_s`, a difference of signed distances, is zero exactly on the curve), among the
-//! candidates that have a point at the polar angle of `near` (a conic has none where
-//! `ρ ≤ 0`). Near tangencies one candidate is a thin conic hugging a ray, on which the
+//! The sign `s` is that of the least residual `|F_s|` of the unsquared equation at
+//! `near` (or at both ends of an edge) (`F_s`, a difference of signed distances, is
+//! zero exactly on the curve), among the candidates that have a point at the polar
+//! angle of `near` (a conic has none where `ρ ≤ 0`). Near tangencies one candidate is a thin conic hugging a ray, on which the
 //! residual, unlike the distance at equal angle, stays a good measure.
 //! When `N = 0` (a point on the circle, a line or circle tangent to it) the curve
 //! degenerates to the ray from `c` in the direction `u*` with `w·u* = M`.
@@ -289,22 +289,29 @@ pub(crate) fn point_arc(id: u32, p: Point, arc: &Arc) -> Bisector {
     Bisector::Conic(Conic::new(arc, rr - dd, 2.0 * arc.r, d * 2.0, (1.0, 0.0)))
 }
 
-/// Whether a candidate has a point at the polar angle of `near` (a conic may have
-/// none: `ρ ≤ 0` there; a ray always counts).
-fn reaches(b: &Bisector, near: Point) -> bool {
+/// Whether a candidate has a point at the polar angle of every probe (a conic may
+/// have none: `ρ ≤ 0` there; a ray always counts).
+fn reaches(b: &Bisector, probes: &[Point]) -> bool {
     match b {
-        Bisector::Conic(k) => k.point(k.param(near)).is_some(),
+        Bisector::Conic(k) => probes.iter().all(|&x| k.point(k.param(x)).is_some()),
         _ => true,
     }
 }
 
-/// Of the candidates for `s = +1` and `s = −1`, the one with the least residual
-/// `|F_s(near)|` among those that reach the angle of `near` (all if none does).
-fn choose(plus: Bisector, minus: Bisector, residual: [f64; 2], near: Point) -> Bisector {
-    let plus_wins = match (reaches(&plus, near), reaches(&minus, near)) {
+/// Of the candidates for `s = +1` and `s = −1`, the one with the least sum of
+/// residuals `|F_s(x)|` over the probes, among those that reach the probes' angles
+/// (both if neither does).
+fn choose(
+    plus: Bisector,
+    minus: Bisector,
+    residual: impl Fn(f64, Point) -> f64,
+    probes: &[Point],
+) -> Bisector {
+    let sum = |s: f64| probes.iter().map(|&x| residual(s, x).abs()).sum::<f64>();
+    let plus_wins = match (reaches(&plus, probes), reaches(&minus, probes)) {
         (true, false) => true,
         (false, true) => false,
-        _ => residual[0].abs() <= residual[1].abs(),
+        _ => sum(1.0) <= sum(-1.0),
     };
     if plus_wins {
         plus
@@ -314,21 +321,20 @@ fn choose(plus: Bisector, minus: Bisector, residual: [f64; 2], near: Point) -> B
 }
 
 /// The bisector of the segment on the line through `a` with unit normal `n`, and
-/// `arc`, through (or nearest to) `near`.
-pub(crate) fn line_arc(a: Point, n: Point, arc: &Arc, near: Point) -> Bisector {
+/// `arc`, through (or nearest to) the probes.
+pub(crate) fn line_arc(a: Point, n: Point, arc: &Arc, probes: &[Point]) -> Bisector {
     let hc = (arc.c - a).dot(n);
-    let hn = (near - a).dot(n);
-    let on = near.dist(arc.c) - arc.r;
     let scale = arc.r + hc.abs();
     let [plus, minus] =
         [1.0, -1.0].map(|s| conic_or_ray(arc, arc.r + s * hc, 1.0, n * s, (1.0, 0.0), scale));
     // F_s = h − s·(ρ − r).
-    choose(plus, minus, [hn - on, hn + on], near)
+    let f = |s: f64, x: Point| (x - a).dot(n) - s * (x.dist(arc.c) - arc.r);
+    choose(plus, minus, f, probes)
 }
 
 /// The bisector of arcs `a` (the focus and parameter) and `b`, through (or nearest
-/// to) `near`.
-pub(crate) fn arc_arc(a: &Arc, b: &Arc, near: Point) -> Bisector {
+/// to) the probes.
+pub(crate) fn arc_arc(a: &Arc, b: &Arc, probes: &[Point]) -> Bisector {
     let delta = b.c - a.c;
     let dd = delta.dot(delta);
     let scale = a.r + b.r;
@@ -344,13 +350,13 @@ pub(crate) fn arc_arc(a: &Arc, b: &Arc, near: Point) -> Bisector {
             clearance: circle(a),
         };
     }
-    let (oa, ob) = (near.dist(a.c) - a.r, near.dist(b.c) - b.r);
     let [plus, minus] = [1.0, -1.0].map(|s| {
         let k = b.r - s * a.r;
         conic_or_ray(a, k * k - dd, -2.0 * s * k, delta * 2.0, (k, s), k * k + dd)
     });
     // F_s = (ρ₂ − r₂) − s·(ρ − r).
-    choose(plus, minus, [ob - oa, ob + oa], near)
+    let f = |s: f64, x: Point| (x.dist(b.c) - b.r) - s * (x.dist(a.c) - a.r);
+    choose(plus, minus, f, probes)
 }
 
 #[cfg(test)]

@@ -152,14 +152,31 @@ impl Bisector {
     /// conics of an arc and a segment or another arc (a point on a curved piece, not a
     /// chord's midpoint, when the piece bends much).
     pub(crate) fn of(a: Shape, b: Shape, near: Point) -> Bisector {
+        Bisector::through(a, b, &[near])
+    }
+
+    /// The bisector of two generators through both ends `from` and `to` of an edge
+    /// (vertices, exactly on it): unlike a chord's midpoint, they tell the two conics
+    /// of an arc and a segment or arc apart wherever the clearance is not zero at both.
+    #[allow(dead_code)] // used once arcs are inserted (issue 4)
+    pub(crate) fn of_edge(a: Shape, b: Shape, from: Point, to: Point) -> Bisector {
+        match (a, b) {
+            (Shape::Arc(_), _) | (_, Shape::Arc(_)) => Bisector::through(a, b, &[from, to]),
+            _ => Bisector::of(a, b, from.lerp(to, 0.5)),
+        }
+    }
+
+    /// The bisector nearest to the probes (one for the straight choices).
+    fn through(a: Shape, b: Shape, probes: &[Point]) -> Bisector {
+        let near = probes[0];
         match (a, b) {
             (Shape::Point(id, p), Shape::Arc(arc)) | (Shape::Arc(arc), Shape::Point(id, p)) => {
                 super::arc::point_arc(id, p, arc)
             }
             (Shape::Segment(l), Shape::Arc(arc)) | (Shape::Arc(arc), Shape::Segment(l)) => {
-                super::arc::line_arc(l.a, l.n, arc, near)
+                super::arc::line_arc(l.a, l.n, arc, probes)
             }
-            (Shape::Arc(a1), Shape::Arc(a2)) => super::arc::arc_arc(a1, a2, near),
+            (Shape::Arc(a1), Shape::Arc(a2)) => super::arc::arc_arc(a1, a2, probes),
             (Shape::Point(_, p), Shape::Point(_, q)) => Bisector::Line {
                 origin: p.lerp(q, 0.5),
                 dir: unit((q - p).perp()),

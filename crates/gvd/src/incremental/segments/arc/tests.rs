@@ -209,8 +209,14 @@ fn branch_through_near() {
             };
             let s = conic.param(x0);
             let (x, t) = conic.point(s).expect("x0 is on the curve");
-            let scale = 1.0 + x0.dist(arc.c);
-            assert!(x.dist(x0) <= 1e-9 * scale, "case {case}: {x:?} vs {x0:?}");
+            // A thin conic hugging a ray (semi-latus rectum |N/M| ≪ ρ: near tangency)
+            // loses accuracy in its polar angle: the ray is a pole of ρ(θ).
+            let thin = (conic.n / conic.m).abs() < 1e-6 * x0.dist(arc.c);
+            let scale = (1.0 + x0.dist(arc.c)) * if thin { 1e4 } else { 1.0 };
+            assert!(
+                x.dist(x0) <= 1e-9 * scale,
+                "case {case}: {x:?} vs {x0:?} {conic:?}"
+            );
             assert!((t - t0).abs() <= 1e-9 * scale, "case {case}");
             checked[kind] += 1;
 
@@ -225,6 +231,16 @@ fn branch_through_near() {
             };
             let (x, _) = k.point(s).expect("x0 is on the curve");
             assert!(x.dist(x0) <= 1e-9 * scale, "case {case}: midpoint");
+
+            // Both ends of an edge, however far apart along the curve.
+            let Some((xc, _)) = conic.point(rng.range(0.0, arc.span)) else {
+                continue;
+            };
+            let Some(k) = conic_of(&Bisector::of_edge(a, b, x0, xc)) else {
+                continue;
+            };
+            let (x, _) = k.point(s).expect("x0 is on the curve");
+            assert!(x.dist(x0) <= 1e-9 * scale, "case {case}: edge");
         }
     }
     assert!(checked.iter().all(|&n| n > 1500), "{checked:?}");

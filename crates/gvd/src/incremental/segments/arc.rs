@@ -20,10 +20,9 @@
 //!   `k = r₂ − s·r`, gives `N = k² − |δ|²`, `M = −2sk`, `w = 2δ`.
 //!
 //! The sign `s` is that of the least residual `|F_s|` of the unsquared equation at
-//! `near` (or at both ends of an edge) (`F_s`, a difference of signed distances, is
-//! zero exactly on the curve), among the candidates that have a point at the polar
-//! angle of `near` (a conic has none where `ρ ≤ 0`). Near tangencies one candidate is a thin conic hugging a ray, on which the
-//! residual, unlike the distance at equal angle, stays a good measure.
+//! `near` (or at both ends of an edge; `F_s`, a difference of signed distances, is
+//! zero exactly on the curve), among the candidates that are not empty (`ρ ≤ 0` at
+//! every angle).
 //! When `N = 0` (a point on the circle, a line or circle tangent to it) the curve
 //! degenerates to the ray from `c` in the direction `u*` with `w·u* = M`.
 //!
@@ -289,18 +288,24 @@ pub(crate) fn point_arc(id: u32, p: Point, arc: &Arc) -> Bisector {
     Bisector::Conic(Conic::new(arc, rr - dd, 2.0 * arc.r, d * 2.0, (1.0, 0.0)))
 }
 
-/// Whether a candidate has a point at the polar angle of every probe (a conic may
-/// have none: `ρ ≤ 0` there; a ray always counts).
-fn reaches(b: &Bisector, probes: &[Point]) -> bool {
+/// Whether a candidate has no point at all: `ρ = N/(M − w·u) ≤ 0` at every angle.
+fn empty(b: &Bisector) -> bool {
     match b {
-        Bisector::Conic(k) => probes.iter().all(|&x| k.point(k.param(x)).is_some()),
-        _ => true,
+        Bisector::Conic(k) => {
+            if k.n > 0.0 {
+                k.m + k.wn <= 0.0
+            } else {
+                k.m - k.wn >= 0.0
+            }
+        }
+        _ => false,
     }
 }
 
 /// Of the candidates for `s = +1` and `s = −1`, the one with the least sum of
-/// residuals `|F_s(x)|` over the probes, among those that reach the probes' angles
-/// (both if neither does).
+/// residuals `|F_s(x)|` over the probes, unless it is empty. (Not the distance at
+/// the probe's polar angle: near a tangency the right candidate is a thin conic
+/// hugging a ray, with no point at an angle slightly off.)
 fn choose(
     plus: Bisector,
     minus: Bisector,
@@ -308,7 +313,7 @@ fn choose(
     probes: &[Point],
 ) -> Bisector {
     let sum = |s: f64| probes.iter().map(|&x| residual(s, x).abs()).sum::<f64>();
-    let plus_wins = match (reaches(&plus, probes), reaches(&minus, probes)) {
+    let plus_wins = match (empty(&minus), empty(&plus)) {
         (true, false) => true,
         (false, true) => false,
         _ => sum(1.0) <= sum(-1.0),

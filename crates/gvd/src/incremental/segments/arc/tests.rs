@@ -221,9 +221,10 @@ fn branch_through_near() {
             checked[kind] += 1;
 
             // The midpoint of two points of the curve on either side of x0, as the
-            // engine passes it.
-            let (Some((xa, _)), Some((xb, _))) = (conic.point(s - 0.02), conic.point(s + 0.02))
-            else {
+            // engine passes it: it tells the candidates apart while the chord's
+            // sagitta is small beside the clearance (else see `of_edge`).
+            let ds = 0.1 * t0 / x0.dist(conic.arc.c);
+            let (Some((xa, _)), Some((xb, _))) = (conic.point(s - ds), conic.point(s + ds)) else {
                 continue;
             };
             let Some(k) = conic_of(&Bisector::of(a, b, xa.lerp(xb, 0.5))) else {

@@ -17,12 +17,15 @@
 //! * the line of a segment, `h(x) = (x − a)·n`, `h_c = h(c)`: `h(x) = s·(ρ − r)` with
 //!   `s = ±1` gives `N = r + s·h_c`, `M = 1`, `w = s·n` (a parabola);
 //! * a second arc `(c₂, r₂)`, `δ = c₂ − c`: `|x − c₂| − r₂ = s·(ρ − r)` with `s = ±1`,
-//!   `k = r₂ − s·r`, gives `N = k² − |δ|²`, `M = −2sk`, `w = 2δ`.
+//!   `k = r₂ − s·r`, gives `N = k² − |δ|²`, `M = −2sk`, `w = 2δ`, valid where
+//!   `|x − c₂| = k + s·ρ ≥ 0` (a conic through inner/inner and outer/outer pieces
+//!   for `s = 1`, mixed ones for `s = −1`).
 //!
 //! The sign `s` is that of the least residual `|F_s|` of the unsquared equation at
 //! `near` (or at both ends of an edge; `F_s`, a difference of signed distances, is
 //! zero exactly on the curve), among the candidates that are not empty (`ρ ≤ 0` at
 //! every angle).
+//!
 //! When `N = 0` (a point on the circle, a line or circle tangent to it) the curve
 //! degenerates to the ray from `c` in the direction `u*` with `w·u* = M`.
 //!

@@ -140,6 +140,7 @@ impl Generators {
                     },
                 }
             }
+            Gen::Arc(_) => unreachable!("scenes with arcs do not use this engine yet (issue 4)"),
         }
     }
 

@@ -1,5 +1,5 @@
-//! Generators (points and open segments), their distances, and the bisector of two
-//! generators between two of its points, in offset-parameter form.
+//! Generators (points, open segments and open arcs), their distances, and the
+//! bisector of two generators between two of its points, in offset-parameter form.
 //!
 //! Every bisector of points and segments is a line or a parabola (the wiki page's
 //! "line/line" and "point/line" forms). A point `x(u)` of the parabola of focus `p` and
@@ -12,8 +12,10 @@
 //!
 //! where `t(u)` is the offset parameter (the clearance, equal distance to `p` and to the
 //! line). Lines (point/point, segment/segment, and the separator of a segment and its
-//! own endpoint) are straight between any two of their points.
+//! own endpoint) are straight between any two of their points. Bisectors with an arc
+//! are conics with a focus at its centre, in polar form (`arc.rs`).
 
+pub(crate) use super::arc::{Arc, Conic};
 use crate::geom::Point;
 
 /// A generator of the segment diagram.
@@ -24,6 +26,9 @@ pub(crate) enum Gen {
     Point(u32),
     /// The open segment with this index.
     Segment(u32),
+    /// The open arc with this index.
+    #[allow(dead_code)] // used once arcs are inserted (issue 4)
+    Arc(u32),
 }
 
 /// A segment as its supporting line: `a + u·d` for `0 < u < len`, unit normal `n`
@@ -101,7 +106,12 @@ pub(crate) enum Bisector {
     Parabola { line: Line, up: f64, hp: f64 },
     /// A point on the line of a segment (outside it) and that segment: the bisector
     /// has no piece where the segment is the nearer; kept straight between vertices.
+    /// Likewise a point on an arc's circle (outside the arc) and that arc.
     Chord { clearance: Clearance },
+    /// A conic with a focus at an arc's centre, parametrized by the polar angle about
+    /// it relative to the arc's start (see `arc.rs`).
+    #[allow(dead_code)] // used once arcs are inserted (issue 4)
+    Conic(Conic),
 }
 
 /// How to measure the clearance (common distance) of a point on a straight bisector.
@@ -109,6 +119,12 @@ pub(crate) enum Bisector {
 pub(crate) enum Clearance {
     Point(Point),
     Line(Line),
+    /// The distance `| |x − c| − r |` to a circle.
+    #[allow(dead_code)] // used once arcs are inserted (issue 4)
+    Circle {
+        c: Point,
+        r: f64,
+    },
 }
 
 impl Clearance {
@@ -116,6 +132,7 @@ impl Clearance {
         match self {
             Clearance::Point(p) => x.dist(*p),
             Clearance::Line(l) => l.coords(x).1.abs(),
+            Clearance::Circle { c, r } => (x.dist(*c) - r).abs(),
         }
     }
 }
@@ -125,13 +142,41 @@ impl Clearance {
 pub(crate) enum Shape<'a> {
     Point(u32, Point),
     Segment(&'a Line),
+    #[allow(dead_code)] // used once arcs are inserted (issue 4)
+    Arc(&'a Arc),
 }
 
 impl Bisector {
     /// The bisector of two generators; `near` (a point of the wanted piece) chooses
-    /// between the two angle bisectors of two segments' lines.
+    /// between the two angle bisectors of two segments' lines, and between the two
+    /// conics of an arc and a segment or another arc (a point on a curved piece, not a
+    /// chord's midpoint, when the piece bends much).
     pub(crate) fn of(a: Shape, b: Shape, near: Point) -> Bisector {
+        Bisector::through(a, b, &[near])
+    }
+
+    /// The bisector of two generators through both ends `from` and `to` of an edge
+    /// (vertices, exactly on it): unlike a chord's midpoint, they tell the two conics
+    /// of an arc and a segment or arc apart wherever the clearance is not zero at both.
+    #[allow(dead_code)] // used once arcs are inserted (issue 4)
+    pub(crate) fn of_edge(a: Shape, b: Shape, from: Point, to: Point) -> Bisector {
         match (a, b) {
+            (Shape::Arc(_), _) | (_, Shape::Arc(_)) => Bisector::through(a, b, &[from, to]),
+            _ => Bisector::of(a, b, from.lerp(to, 0.5)),
+        }
+    }
+
+    /// The bisector nearest to the probes (one for the straight choices).
+    fn through(a: Shape, b: Shape, probes: &[Point]) -> Bisector {
+        let near = probes[0];
+        match (a, b) {
+            (Shape::Point(id, p), Shape::Arc(arc)) | (Shape::Arc(arc), Shape::Point(id, p)) => {
+                super::arc::point_arc(id, p, arc)
+            }
+            (Shape::Segment(l), Shape::Arc(arc)) | (Shape::Arc(arc), Shape::Segment(l)) => {
+                super::arc::line_arc(l.a, l.n, arc, probes)
+            }
+            (Shape::Arc(a1), Shape::Arc(a2)) => super::arc::arc_arc(a1, a2, probes),
             (Shape::Point(_, p), Shape::Point(_, q)) => Bisector::Line {
                 origin: p.lerp(q, 0.5),
                 dir: unit((q - p).perp()),
@@ -191,6 +236,7 @@ impl Bisector {
         match self {
             Bisector::Line { origin, dir, .. } => (x - *origin).dot(*dir),
             Bisector::Parabola { line, .. } => line.coords(x).0,
+            Bisector::Conic(conic) => conic.param(x),
             Bisector::Chord { .. } => unreachable!("chords use the chord parameter"),
         }
     }
@@ -215,6 +261,14 @@ impl Bisector {
                 let x = from.lerp(to, s);
                 (x, clearance.at(x))
             }
+            Bisector::Conic(conic) => conic.point(s).unwrap_or_else(|| {
+                // Off the curve (only through rounding between two of its points):
+                // the chord.
+                let (s0, s1) = (conic.param(from), conic.param(to));
+                let lambda = if s1 != s0 { (s - s0) / (s1 - s0) } else { 0.5 };
+                let x = from.lerp(to, lambda.clamp(0.0, 1.0));
+                (x, conic.clearance(x))
+            }),
         }
     }
 
@@ -291,6 +345,13 @@ impl Bisector {
                         pts.push(self.point(from, to, w[1]).0);
                     }
                 }
+                pts.push(to);
+                pts
+            }
+            Bisector::Conic(conic) => {
+                let (s0, s1) = self.range(from, to);
+                let mut pts = vec![from];
+                pts.extend(conic.interior_samples(s0, s1, tol));
                 pts.push(to);
                 pts
             }

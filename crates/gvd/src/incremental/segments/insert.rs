@@ -90,6 +90,7 @@ impl Sites<'_> {
         match g {
             Gen::Point(i) => Shape::Point(i, self.points[i as usize]),
             Gen::Segment(i) => Shape::Segment(&self.lines[i as usize]),
+            Gen::Arc(_) => unreachable!("arcs are not inserted yet (issue 4)"),
         }
     }
 }

@@ -14,6 +14,7 @@
 //! segment (touching at shared endpoints is fine): [`SegmentDiagram::new`] refuses such
 //! input, naming the two segments (see `crossings.rs`).
 
+mod arc;
 mod crossings;
 mod geometry;
 mod graph;
@@ -128,6 +129,7 @@ impl SegmentDiagram {
                 (i != u32::MAX).then_some(Gen::Point(i))
             }
             Gen::Segment(j) => Some(Gen::Segment(j)),
+            Gen::Arc(j) => Some(Gen::Arc(j)),
         }
     }
 

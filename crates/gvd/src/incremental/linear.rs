@@ -1,11 +1,13 @@
-//! Scenes of Euclidean points, segments, polylines and polygons through the segment
-//! engine: sites become point and segment generators, and the engine's raw graph
-//! becomes the [`VoronoiComplex`] of the scene's mode.
+//! Scenes of Euclidean points, segments, arcs, polylines and polygons through the
+//! segment engine: sites become point, segment and arc generators, and the engine's raw
+//! graph becomes the [`VoronoiComplex`] of the scene's mode.
 //!
-//! * Generators: every distinct point (point sites, segment ends, chain corners) and
-//!   every segment, polyline edge and polygon edge of positive length.
+//! * Generators: every distinct point (point sites, segment and arc ends, chain
+//!   corners), every segment, polyline edge and polygon edge of positive length, and
+//!   every arc short of a full circle.
 //! * Labels: in `voronoi` mode a generator is its site; in `complex` and
-//!   `medial_axis` modes a corner or an edge feature (a point site stays a site).
+//!   `medial_axis` modes a corner, an edge or a piece (an arc's inside) feature (a
+//!   point site stays a site).
 //! * Edges between a corner and a segment ending there (the zone boundaries, or
 //!   separators) and edges between two parts of one site in `voronoi` mode are left
 //!   out; edges then run through the vertices that join only two labels. Edges inside
@@ -13,26 +15,41 @@
 //!   site) and kept only there in `medial_axis` mode. Everything is clipped to the
 //!   domain.
 
-use super::segments::{find_conflict, Conflict, Gen, SegmentDiagram};
+use super::segments::{
+    find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
+};
 use crate::complex::{Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
 use std::collections::HashMap;
 
-/// Whether every site is a Euclidean point, a segment, a polyline or a polygon.
+/// Whether every site is a Euclidean point, a segment, an arc short of a full circle, a
+/// polyline or a polygon.
 pub fn supports(scene: &Scene) -> bool {
-    scene.sites.iter().all(|s| {
-        matches!(
-            s.kind,
+    scene.sites.iter().all(|s| match &s.kind {
+        SiteKind::Arc {
+            start_angle,
+            end_angle,
+            ..
+        } => arc_span(*start_angle, *end_angle).is_some(),
+        kind => matches!(
+            kind,
             SiteKind::Point {
                 metric: Metric::Euclidean,
                 ..
             } | SiteKind::Segment { .. }
                 | SiteKind::Polyline { .. }
                 | SiteKind::Polygon { .. }
-        )
+        ),
     })
+}
+
+/// The counter-clockwise span from `start` to `end` in `(0, 2π)`, or `None` for a full
+/// circle (the shared checker's rule: a span within 1e-12 of zero or 2π is a circle).
+fn arc_span(start: f64, end: f64) -> Option<f64> {
+    let span = (end - start).rem_euclid(std::f64::consts::TAU);
+    (span > 1e-12 && span < std::f64::consts::TAU - 1e-12).then_some(span)
 }
 
 /// The generators of a scene and what they stand for.
@@ -43,6 +60,9 @@ struct Generators {
     segments: Vec<[u32; 2]>,
     /// Per segment generator: (site, edge index).
     segment_owner: Vec<(usize, usize)>,
+    arcs: Vec<ArcSpec>,
+    /// Per arc generator: its site.
+    arc_owner: Vec<usize>,
     /// Point generators that are point sites and no segment's end.
     lonely: Vec<u32>,
     /// Closed rings of polygon sites (for insides).
@@ -56,6 +76,8 @@ impl Generators {
             point_owner: Vec::new(),
             segments: Vec::new(),
             segment_owner: Vec::new(),
+            arcs: Vec::new(),
+            arc_owner: Vec::new(),
             lonely: Vec::new(),
             rings: Vec::new(),
         };
@@ -86,11 +108,29 @@ impl Generators {
             }
         };
         let mut points_sites = Vec::new();
+        let mut arc_sites = Vec::new();
         for (i, site) in scene.sites.iter().enumerate() {
             match &site.kind {
                 SiteKind::Point { at, .. } => points_sites.push((i, *at)),
                 SiteKind::Segment { from, to } => chain(&mut g, i, 0, &[*from, *to], false),
                 SiteKind::Polyline { points } => chain(&mut g, i, 0, points, false),
+                &SiteKind::Arc {
+                    center,
+                    radius,
+                    start_angle,
+                    end_angle,
+                } => {
+                    if let Some(span) = arc_span(start_angle, end_angle) {
+                        let arc = ArcSpec {
+                            c: center,
+                            r: radius,
+                            start: start_angle,
+                            span,
+                            ends: [0, 0],
+                        };
+                        arc_sites.push((i, arc));
+                    }
+                }
                 SiteKind::Polygon { rings } => {
                     let mut corner = 0;
                     for ring in rings {
@@ -101,6 +141,11 @@ impl Generators {
                 }
                 _ => {}
             }
+        }
+        for (i, mut arc) in arc_sites {
+            arc.ends = [0, 1].map(|k| point(&mut g, arc.end_point(k), (i, Some(k))));
+            g.arcs.push(arc);
+            g.arc_owner.push(i);
         }
         // Point sites last, so that a corner keeps its feature label; a point site on
         // a corner is the same generator.
@@ -140,7 +185,17 @@ impl Generators {
                     },
                 }
             }
-            Gen::Arc(_) => unreachable!("scenes with arcs do not use this engine yet (issue 4)"),
+            Gen::Arc(a) => {
+                let site = self.arc_owner[a as usize];
+                match mode {
+                    Mode::Voronoi => Generator::Site(site),
+                    _ => Generator::Feature {
+                        site,
+                        feature: FeatureKind::Piece,
+                        index: 0,
+                    },
+                }
+            }
         }
     }
 
@@ -149,6 +204,9 @@ impl Generators {
         match (a, b) {
             (Gen::Point(p), Gen::Segment(s)) | (Gen::Segment(s), Gen::Point(p)) => {
                 self.segments[s as usize].contains(&p)
+            }
+            (Gen::Point(p), Gen::Arc(a)) | (Gen::Arc(a), Gen::Point(p)) => {
+                self.arcs[a as usize].ends.contains(&p)
             }
             _ => false,
         }
@@ -170,6 +228,27 @@ impl Generators {
             }
         }
         inside
+    }
+}
+
+fn arc_conflict_error(g: &Generators, c: ArcConflict) -> Error {
+    let (a, b, what) = match c {
+        ArcConflict::Segment(i, j) => (
+            g.arc_owner[i],
+            g.segment_owner[j].0,
+            "an arc crosses or touches a segment away from a shared endpoint",
+        ),
+        ArcConflict::Arc(i, j) => (
+            g.arc_owner[i],
+            g.arc_owner[j],
+            "arcs cross, touch or overlap away from a shared endpoint",
+        ),
+        ArcConflict::Point(i, p) => (g.arc_owner[i], g.point_owner[p].0, "a point lies on an arc"),
+    };
+    Error::Conflict {
+        site: a.min(b),
+        other: a.max(b),
+        message: what.to_string(),
     }
 }
 
@@ -207,7 +286,11 @@ pub fn linear_voronoi(scene: &Scene) -> Result<VoronoiComplex, Error> {
     if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely) {
         return Err(conflict_error(&g, c));
     }
-    let diagram = SegmentDiagram::new(&g.points, &g.segments, scene.domain)?;
+    let scale = scene.domain.longest_side();
+    if let Some(c) = find_arc_conflict(&g.points, &g.segments, &g.arcs, &g.lonely, scale) {
+        return Err(arc_conflict_error(&g, c));
+    }
+    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain)?;
     let (vertices, edges) = diagram.raw(scene.epsilon / 4.0);
     let mut complex = assemble(&g, scene, vertices, edges);
     complex.stats.insert(

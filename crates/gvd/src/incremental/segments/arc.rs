@@ -39,7 +39,6 @@ use std::f64::consts::{PI, TAU};
 
 /// An open circular arc, counter-clockwise from `a0` over `span ∈ (0, 2π]`.
 #[derive(Clone, Copy, Debug)]
-#[allow(dead_code)] // used once arcs are inserted (issue 4)
 pub(crate) struct Arc {
     pub(crate) c: Point,
     pub(crate) r: f64,
@@ -51,7 +50,6 @@ pub(crate) struct Arc {
     pub(crate) end_points: [Point; 2],
 }
 
-#[allow(dead_code)] // used once arcs are inserted (issue 4)
 impl Arc {
     /// The arc of centre `c` and radius `r` from angle `start` counter-clockwise to
     /// `end` (radians; the span `end − start` is taken into `(0, 2π]`).
@@ -82,13 +80,6 @@ impl Arc {
         } else {
             a
         }
-    }
-
-    /// The relative angle of `x` and its signed offset `|x − c| − r` (positive
-    /// outside the circle).
-    #[inline]
-    pub(crate) fn coords(&self, x: Point) -> (f64, f64) {
-        (self.rel_angle(x), x.dist(self.c) - self.r)
     }
 
     /// Whether `x` lies strictly inside the wedge (never the centre).

@@ -27,7 +27,6 @@ pub(crate) enum Gen {
     /// The open segment with this index.
     Segment(u32),
     /// The open arc with this index.
-    #[allow(dead_code)] // used once arcs are inserted (issue 4)
     Arc(u32),
 }
 
@@ -110,7 +109,6 @@ pub(crate) enum Bisector {
     Chord { clearance: Clearance },
     /// A conic with a focus at an arc's centre, parametrized by the polar angle about
     /// it relative to the arc's start (see `arc.rs`).
-    #[allow(dead_code)] // used once arcs are inserted (issue 4)
     Conic(Conic),
 }
 
@@ -120,7 +118,6 @@ pub(crate) enum Clearance {
     Point(Point),
     Line(Line),
     /// The distance `| |x − c| − r |` to a circle.
-    #[allow(dead_code)] // used once arcs are inserted (issue 4)
     Circle {
         c: Point,
         r: f64,
@@ -142,7 +139,6 @@ impl Clearance {
 pub(crate) enum Shape<'a> {
     Point(u32, Point),
     Segment(&'a Line),
-    #[allow(dead_code)] // used once arcs are inserted (issue 4)
     Arc(&'a Arc),
 }
 
@@ -158,7 +154,6 @@ impl Bisector {
     /// The bisector of two generators through both ends `from` and `to` of an edge
     /// (vertices, exactly on it): unlike a chord's midpoint, they tell the two conics
     /// of an arc and a segment or arc apart wherever the clearance is not zero at both.
-    #[allow(dead_code)] // used once arcs are inserted (issue 4)
     pub(crate) fn of_edge(a: Shape, b: Shape, from: Point, to: Point) -> Bisector {
         match (a, b) {
             (Shape::Arc(_), _) | (_, Shape::Arc(_)) => Bisector::through(a, b, &[from, to]),

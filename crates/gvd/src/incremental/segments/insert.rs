@@ -24,7 +24,7 @@
 //! Every decision that shapes the graph is combinatorial, so the graph stays a valid
 //! planar map whatever the rounding; geometry near exact ties is within rounding.
 
-use super::geometry::{Bisector, Gen, Line, Shape};
+use super::geometry::{Arc, Bisector, Gen, Line, Shape};
 use super::graph::{Graph, GHOST, NONE};
 use super::site::NewSite;
 use crate::geom::Point;
@@ -75,22 +75,23 @@ impl Ord for Candidate {
 pub(crate) struct Sites<'a> {
     pub(crate) points: &'a [Point],
     pub(crate) lines: &'a [Line],
+    pub(crate) arcs: &'a [Arc],
     /// The faces of the segments and arcs inserted so far at each point generator
     /// (point generator `p`'s own face is `p`).
     pub(crate) faces_at_point: &'a [Vec<u32>],
 }
 
 impl Sites<'_> {
-    /// The bisector of generators `a` and `b` through (or near) `near`.
-    pub(crate) fn bisector(&self, a: Gen, b: Gen, near: Point) -> Bisector {
-        Bisector::of(self.shape(a), self.shape(b), near)
+    /// The bisector of generators `a` and `b` between two of its points (or near them).
+    pub(crate) fn bisector(&self, a: Gen, b: Gen, from: Point, to: Point) -> Bisector {
+        Bisector::of_edge(self.shape(a), self.shape(b), from, to)
     }
 
     fn shape(&self, g: Gen) -> Shape<'_> {
         match g {
             Gen::Point(i) => Shape::Point(i, self.points[i as usize]),
             Gen::Segment(i) => Shape::Segment(&self.lines[i as usize]),
-            Gen::Arc(_) => unreachable!("arcs are not inserted yet (issue 4)"),
+            Gen::Arc(i) => Shape::Arc(&self.arcs[i as usize]),
         }
     }
 }
@@ -177,7 +178,7 @@ pub(crate) fn insert_site(
             let right = g.edges[g.edges[e as usize].twin as usize].face;
             let (from, to) = (g.vertices[u as usize].at, g.vertices[w as usize].at);
             let (gl, gr) = (g.faces[left as usize].gen, g.faces[right as usize].gen);
-            let bis = sites.bisector(gl, gr, from.lerp(to, 0.5));
+            let bis = sites.bisector(gl, gr, from, to);
             let (at, t) = leave_region(&bis, from, to, site, inside);
             if at == to {
                 scratch.overrides += 1;
@@ -288,7 +289,7 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
     };
     let he = g.edges[e as usize];
     let other = g.edges[he.twin as usize].face;
-    let bis = sites.bisector(Gen::Point(p), g.faces[other as usize].gen, a.lerp(b, 0.5));
+    let bis = sites.bisector(Gen::Point(p), g.faces[other as usize].gen, a, b);
     let (at, t) = bis.boundary(a, b, |x, _| turn(ta, angle(x)) < to_ray);
     g.split_edge(e, at, t);
 }
@@ -309,11 +310,7 @@ fn split_crossing(g: &mut Graph, sites: &Sites, site: &impl NewSite) -> Option<u
                 continue;
             }
             let other = g.edges[g.edges[e as usize].twin as usize].face;
-            let bis = sites.bisector(
-                g.faces[f as usize].gen,
-                g.faces[other as usize].gen,
-                pa.lerp(pb, 0.5),
-            );
+            let bis = sites.bisector(g.faces[f as usize].gen, g.faces[other as usize].gen, pa, pb);
             let (at, t) = bis.boundary(pa, pb, |x, _| (site.side(x) < 0.0) == (sa < 0.0));
             if site.claims(at, t) {
                 return Some(g.split_edge(e, at, t));
@@ -452,7 +449,7 @@ fn split_unclaimed_edges(
         );
         let left = g.faces[g.edges[e as usize].face as usize].gen;
         let right = g.faces[g.edges[g.edges[e as usize].twin as usize].face as usize].gen;
-        let bis = sites.bisector(left, right, from.lerp(to, 0.5));
+        let bis = sites.bisector(left, right, from, to);
         let unclaimed = site
             .pieces(&bis, from, to)
             .into_iter()

@@ -15,6 +15,7 @@
 //! input, naming the two segments (see `crossings.rs`).
 
 mod arc;
+mod arc_conflicts;
 mod crossings;
 mod geometry;
 mod graph;
@@ -22,13 +23,14 @@ mod insert;
 mod pieces;
 mod site;
 
+pub(crate) use arc_conflicts::{find_arc_conflict, ArcConflict, ArcSpec};
 pub(crate) use crossings::{find_conflict, Conflict};
 pub(crate) use geometry::Gen;
 
 use super::PointDiagram;
 use crate::geom::{Aabb, Point};
 use crate::Error;
-use geometry::Line;
+use geometry::{Arc, Line};
 use graph::{Graph, GHOST};
 use insert::{insert_site, InsertError, Scratch, Sites};
 
@@ -40,6 +42,7 @@ pub(crate) struct SegmentDiagram {
     /// The caller's index of each point generator (`u32::MAX` for far ones).
     point_id: Vec<u32>,
     lines: Vec<Line>,
+    arcs: Vec<Arc>,
     scale: f64,
     /// See [`Scratch::overrides`](insert::Scratch).
     pub(crate) overrides: usize,
@@ -66,6 +69,7 @@ impl SegmentDiagram {
     pub(crate) fn new(
         points: &[Point],
         segments: &[[u32; 2]],
+        arcs: &[ArcSpec],
         domain: Aabb,
     ) -> Result<SegmentDiagram, Error> {
         let pd = PointDiagram::new(points, domain)?;
@@ -84,26 +88,54 @@ impl SegmentDiagram {
                 Line::new(pd.pts[fa as usize], pd.pts[fb as usize], [fa, fb])
             })
             .collect();
+        // Internal coordinates are the input's times a power of two: exact for arcs too.
+        let arc_gens: Vec<Arc> = arcs
+            .iter()
+            .map(|a| {
+                let ends = a.ends.map(|p| face_of_point[p as usize]);
+                let mut arc = Arc::new(
+                    a.c * pd.scale,
+                    a.r * pd.scale,
+                    a.start,
+                    a.start + a.span,
+                    ends,
+                );
+                arc.end_points = ends.map(|f| pd.pts[f as usize]);
+                arc
+            })
+            .collect();
         let mut faces_at_point: Vec<Vec<u32>> = vec![Vec::new(); pd.pts.len()];
         let mut scratch = Scratch::default();
-        for s in insertion_order(segments.len()) {
+        for k in insertion_order(segments.len() + arcs.len()) {
             let sites = Sites {
                 points: &pd.pts,
                 lines: &lines,
+                arcs: &arc_gens,
                 faces_at_point: &faces_at_point,
             };
-            let gen = Gen::Segment(s as u32);
-            let face =
-                insert_site(&mut graph, &sites, &lines[s], gen, &mut scratch).map_err(|e| {
-                    let why = match e {
-                        InsertError::NoSeed => "no Voronoi vertex nearer to it was found",
-                        InsertError::BrokenChain => "its conflict region was not a tree",
-                    };
-                    Error::Internal(format!(
-                        "segment generator {s} could not be inserted: {why}"
-                    ))
-                })?;
-            for &p in &lines[s].ends {
+            let (face, ends) = if k < lines.len() {
+                let gen = Gen::Segment(k as u32);
+                (
+                    insert_site(&mut graph, &sites, &lines[k], gen, &mut scratch),
+                    lines[k].ends,
+                )
+            } else {
+                let a = k - lines.len();
+                let gen = Gen::Arc(a as u32);
+                (
+                    insert_site(&mut graph, &sites, &arc_gens[a], gen, &mut scratch),
+                    arc_gens[a].ends,
+                )
+            };
+            let face = face.map_err(|e| {
+                let why = match e {
+                    InsertError::NoSeed => "no Voronoi vertex nearer to it was found",
+                    InsertError::BrokenChain => "its conflict region was not a tree",
+                };
+                let what = if k < lines.len() { "segment" } else { "arc" };
+                Error::Internal(format!("{what} generator {k} could not be inserted: {why}"))
+            })?;
+            for p in ends {
                 faces_at_point[p as usize].push(face);
             }
         }
@@ -116,6 +148,7 @@ impl SegmentDiagram {
             points: pd.pts,
             point_id,
             lines,
+            arcs: arc_gens,
             scale: pd.scale,
         })
     }
@@ -162,6 +195,7 @@ impl SegmentDiagram {
         let sites = Sites {
             points: &self.points,
             lines: &self.lines,
+            arcs: &self.arcs,
             faces_at_point: &[],
         };
         let mut edges = Vec::new();
@@ -181,7 +215,7 @@ impl SegmentDiagram {
             };
             let (pa, pb) = (g.vertices[a].at, g.vertices[b].at);
             let points = sites
-                .bisector(ga, gb, pa.lerp(pb, 0.5))
+                .bisector(ga, gb, pa, pb)
                 .polyline(pa, pb, tol * self.scale)
                 .into_iter()
                 .map(|p| p * inv)

@@ -62,6 +62,7 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
     add_roots(quad(&|(f, _, _)| f));
     add_roots(quad(&|(f, _, _)| f - line.len));
     match bis {
+        Bisector::Conic(_) => return sampled_pieces(bis, from, to, |x, t| line.claims(x, t)),
         Bisector::Parabola { .. } => {
             add_roots(quad(&|(_, h, t)| t - h));
             add_roots(quad(&|(_, h, t)| t + h));
@@ -91,6 +92,34 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
             push(w[0], w[0], claims_at(w[0]));
         }
         push(w[0], w[1], claims_at(0.5 * (w[0] + w[1])));
+    }
+    pieces
+}
+
+/// Fractions sampled where the claim is not polynomial in the fraction (conics of
+/// arcs): pieces narrower than a sample's spacing can be missed.
+const SAMPLES: usize = 64;
+
+/// The claimed and unclaimed intervals of a bisector piece by samples: each interval
+/// between consecutive samples whose claims differ is split at the middle.
+pub(crate) fn sampled_pieces(
+    bis: &Bisector,
+    from: Point,
+    to: Point,
+    claims: impl Fn(Point, f64) -> bool,
+) -> Vec<Piece> {
+    let claim_at = |lambda: f64| {
+        let (x, t) = bis.at_fraction(from, to, lambda);
+        claims(x, t)
+    };
+    let mut pieces: Vec<Piece> = Vec::new();
+    for k in 0..SAMPLES {
+        let (lo, hi) = (k as f64 / SAMPLES as f64, (k + 1) as f64 / SAMPLES as f64);
+        let claimed = claim_at(0.5 * (lo + hi));
+        match pieces.last_mut() {
+            Some(last) if last.claimed == claimed => last.hi = hi,
+            _ => pieces.push(Piece { lo, hi, claimed }),
+        }
     }
     pieces
 }

@@ -1,8 +1,8 @@
 //! What the insertion needs to know of the site it inserts: an open segment (and,
 //! the same way, an open arc), with its two endpoints already in the diagram.
 
-use super::geometry::{Bisector, Line};
-use super::pieces::{claimed_pieces, Piece};
+use super::geometry::{Arc, Bisector, Line};
+use super::pieces::{claimed_pieces, sampled_pieces, Piece};
 use crate::geom::Point;
 
 pub(crate) trait NewSite {
@@ -45,5 +45,33 @@ impl NewSite for Line {
     }
     fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Vec<Piece> {
         claimed_pieces(bis, from, to, self)
+    }
+}
+
+impl NewSite for Arc {
+    fn ends(&self) -> [u32; 2] {
+        self.ends
+    }
+    fn open_distance(&self, x: Point) -> f64 {
+        Arc::open_distance(self, x)
+    }
+    fn claims(&self, x: Point, t: f64) -> bool {
+        Arc::claims(self, x, t)
+    }
+    /// Backwards along the counter-clockwise tangent at the start, forwards at the end.
+    fn away(&self, k: usize) -> Point {
+        let a = self.a0 + if k == 0 { 0.0 } else { self.span };
+        let tangent = Point::new(-a.sin(), a.cos());
+        if k == 0 {
+            tangent * -1.0
+        } else {
+            tangent
+        }
+    }
+    fn side(&self, x: Point) -> f64 {
+        x.dist(self.c) - self.r
+    }
+    fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Vec<Piece> {
+        sampled_pieces(bis, from, to, |x, t| self.claims(x, t))
     }
 }

@@ -1,10 +1,11 @@
 //! From the half-edge graph to the clipped [`VoronoiComplex`].
 
+use super::cells::{face_cells, Inconsistent};
 use super::graph::GHOST;
 use super::predicates::{circumcenter, incircle};
 use super::PointDiagram;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
-use crate::geom::Point;
+use crate::geom::{Aabb, Point};
 
 /// Union–find with path halving.
 fn find(parent: &mut [u32], mut v: u32) -> u32 {
@@ -25,7 +26,9 @@ struct Node {
     out: u32,
 }
 
-pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
+/// The clipped complex; with `with_cells`, also its cells traced from the graph's faces
+/// (`false` when a face could not be traced consistently; `cells` is then empty).
+pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex, bool) {
     let g = &d.graph;
     let n = d.input.len() as u32;
     let nv = g.gens.len();
@@ -113,6 +116,11 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
 
     // Edges between real sites, between distinct groups, clipped to the domain.
     let mut edges = Vec::with_capacity(g.twin.len() / 2);
+    let mut edge_of = if with_cells {
+        vec![u32::MAX; g.twin.len()]
+    } else {
+        Vec::new()
+    };
     for (h, &t) in g.twin.iter().enumerate() {
         if (h as u32) > t {
             continue;
@@ -159,6 +167,9 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
                 if to.is_some() { nw.at } else { on_line(hi) },
             )
         };
+        if with_cells {
+            edge_of[h] = edges.len() as u32;
+        }
         edges.push(Edge {
             sites: [site(b), site(a)],
             from,
@@ -172,6 +183,15 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
         edges,
         ..Default::default()
     };
+    let mut traced = true;
+    if with_cells {
+        drop(nodes);
+        let domain = Aabb::new(d.domain.min * inv, d.domain.max * inv);
+        match face_cells(d, &c.edges, &edge_of, domain) {
+            Ok(cells) => c.cells = cells,
+            Err(Inconsistent) => traced = false,
+        }
+    }
     let stat = |v: usize| serde_json::Value::from(v);
     c.stats.insert("sites".into(), stat(d.input.len()));
     c.stats
@@ -184,5 +204,5 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
         .insert("seed_fallbacks".into(), stat(d.seed_fallbacks));
     c.stats.insert("vertices".into(), stat(c.vertices.len()));
     c.stats.insert("edges".into(), stat(c.edges.len()));
-    c
+    (c, traced)
 }

@@ -103,6 +103,11 @@ fn check_with(name: &str, domain: Aabb, points: &[Point], against_edges: bool) -
         assert!(signed_area(r) > 0.0, "{name}: site {}", c.site);
         assert_ne!(r.first(), r.last(), "{name}: site {}", c.site);
         assert!(
+            r.windows(2).all(|w| w[0] != w[1]),
+            "{name}: site {}",
+            c.site
+        );
+        assert!(
             r.iter().all(|&p| domain.contains(p)),
             "{name}: site {}",
             c.site

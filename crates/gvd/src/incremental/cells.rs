@@ -4,7 +4,7 @@
 //! face leaves the domain and comes back.
 
 use super::PointDiagram;
-use crate::complex::{Cell, Edge};
+use crate::complex::Cell;
 use crate::geom::{Aabb, Point};
 
 /// Why a face could not be traced; the caller then falls back to the generic
@@ -12,13 +12,12 @@ use crate::geom::{Aabb, Point};
 #[derive(Debug)]
 pub(super) struct Inconsistent;
 
-/// The cells of `d`, sorted by site, from the output `edges` and `edge_of` (the index in
-/// `edges` of the edge of half-edge `h`, stored at `min(h, twin(h))`, `u32::MAX` for
-/// none). `domain` is in input coordinates.
+/// The cells of `d`, sorted by site. `segment(h)` is the output edge of half-edge `h`
+/// from its origin on (the segment clipped to the domain, input coordinates), `None` if
+/// no edge is output for it. `domain` is in input coordinates.
 pub(super) fn face_cells(
     d: &PointDiagram,
-    edges: &[Edge],
-    edge_of: &[u32],
+    segment: impl Fn(u32) -> Option<(Point, Point)> + Sync,
     domain: Aabb,
 ) -> Result<Vec<Cell>, Inconsistent> {
     let g = &d.graph;
@@ -26,23 +25,6 @@ pub(super) fn face_cells(
     let (w, h) = (domain.width(), domain.height());
     if n == 0 || !(w > 0.0 && h > 0.0 && w.is_finite() && h.is_finite()) {
         return Ok(Vec::new());
-    }
-    if edges.is_empty() {
-        // No edge meets the domain: it lies in one cell, the nearest site's to its
-        // centre (the least index among equals).
-        let c = d.domain.center();
-        let key = |s: usize| (d.pts[s].dist(c), d.input[s]);
-        let best = (1..n).fold(0, |b, s| {
-            if key(s).partial_cmp(&key(b)) == Some(std::cmp::Ordering::Less) {
-                s
-            } else {
-                b
-            }
-        });
-        return Ok(vec![Cell {
-            site: d.input[best] as usize,
-            rings: vec![domain.corners().to_vec()],
-        }]);
     }
 
     // One half-edge of every site's face (in insertion order).
@@ -59,34 +41,34 @@ pub(super) fn face_cells(
         if h0 == u32::MAX {
             return Ok(None); // a duplicate: no face
         }
-        let mut segs: Vec<(Point, Point)> = Vec::new();
+        // The face's clipped edges in counter-clockwise order, joined along the
+        // boundary where one ends short of where the next begins.
+        let mut ring: Vec<Point> = Vec::new();
         let mut h = h0;
         loop {
-            let t = g.twin[h as usize];
-            let e = edge_of[h.min(t) as usize];
-            if e != u32::MAX {
-                let p = &edges[e as usize].points;
-                let (a, b) = (frame.snap(p[0]), frame.snap(p[p.len() - 1]));
-                segs.push(if h < t { (a, b) } else { (b, a) });
+            if let Some((a, b)) = segment(h) {
+                let (a, b) = (frame.snap(a), frame.snap(b));
+                match ring.last() {
+                    None => ring.reserve(8),
+                    Some(&last) if last != a => frame.walk(last, a, &mut ring)?,
+                    Some(_) => {}
+                }
+                for p in [a, b] {
+                    if ring.last() != Some(&p) {
+                        ring.push(p);
+                    }
+                }
             }
             h = g.next(h);
             if h == h0 {
                 break;
             }
         }
-        if segs.is_empty() {
+        let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
             return Ok(None);
-        }
-        let mut ring: Vec<Point> = Vec::with_capacity(segs.len() + 4);
-        for (i, &(a, b)) in segs.iter().enumerate() {
-            if ring.last() != Some(&a) {
-                ring.push(a);
-            }
-            ring.push(b);
-            let next = segs[(i + 1) % segs.len()].0;
-            if b != next {
-                frame.walk(b, next, &mut ring)?;
-            }
+        };
+        if last != first {
+            frame.walk(last, first, &mut ring)?;
         }
         while ring.len() > 1 && ring.first() == ring.last() {
             ring.pop();
@@ -101,19 +83,39 @@ pub(super) fn face_cells(
     };
 
     #[cfg(feature = "parallel")]
-    let traced: Vec<Result<Option<Cell>, Inconsistent>> = {
+    let traced: Vec<Option<Cell>> = {
         use rayon::prelude::*;
-        (0..n).into_par_iter().map(trace).collect()
+        (0..n)
+            .into_par_iter()
+            .map(trace)
+            .collect::<Result<_, _>>()?
     };
     #[cfg(not(feature = "parallel"))]
-    let traced: Vec<Result<Option<Cell>, Inconsistent>> = (0..n).map(trace).collect();
+    let traced: Vec<Option<Cell>> = (0..n).map(trace).collect::<Result<_, _>>()?;
     let mut by_site: Vec<Option<Cell>> = Vec::new();
     by_site.resize_with(n, || None);
-    for c in traced {
-        if let Some(c) = c? {
-            let site = c.site;
-            by_site[site] = Some(c);
-        }
+    let mut any = false;
+    for c in traced.into_iter().flatten() {
+        let site = c.site;
+        by_site[site] = Some(c);
+        any = true;
+    }
+    if !any {
+        // No edge meets the domain: it lies in one cell, the nearest site's to its
+        // centre (the least index among equals).
+        let c = d.domain.center();
+        let key = |s: usize| (d.pts[s].dist(c), d.input[s]);
+        let best = (1..n).fold(0, |b, s| {
+            if key(s).partial_cmp(&key(b)) == Some(std::cmp::Ordering::Less) {
+                s
+            } else {
+                b
+            }
+        });
+        return Ok(vec![Cell {
+            site: d.input[best] as usize,
+            rings: vec![domain.corners().to_vec()],
+        }]);
     }
     Ok(by_site.into_iter().flatten().collect())
 }

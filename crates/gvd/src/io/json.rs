@@ -53,32 +53,36 @@ pub fn write_diagram_to<W: std::io::Write>(
 }
 
 /// A JSON array of `items`, as serde_json writes it: chunks formatted into buffers (in
-/// parallel, a bounded number at a time), then written in order.
+/// parallel, a bounded number at a time, the buffers reused), then written in order.
 fn write_list<T: serde::Serialize + Sync, W: std::io::Write>(
     items: &[T],
     out: &mut W,
 ) -> std::io::Result<()> {
     const CHUNK: usize = 1 << 14;
     const BATCH: usize = 16;
-    let format = |chunk: &[T]| -> Vec<u8> {
-        let mut buf = Vec::with_capacity(chunk.len() * 64);
+    let format = |(chunk, buf): (&[T], &mut Vec<u8>)| {
+        buf.clear();
         for item in chunk {
             buf.push(b',');
             // plain data into a vector: cannot fail
-            serde_json::to_writer(&mut buf, item).unwrap_or_default();
+            serde_json::to_writer(&mut *buf, item).unwrap_or_default();
         }
-        buf
     };
+    let mut bufs: Vec<Vec<u8>> = vec![Vec::new(); BATCH.min(items.len().div_ceil(CHUNK))];
     out.write_all(b"[")?;
     for (b, batch) in items.chunks(CHUNK * BATCH).enumerate() {
         #[cfg(feature = "parallel")]
-        let bufs: Vec<Vec<u8>> = {
+        {
             use rayon::prelude::*;
-            batch.par_chunks(CHUNK).map(format).collect()
-        };
+            batch
+                .par_chunks(CHUNK)
+                .zip(bufs.par_iter_mut())
+                .for_each(format);
+        }
         #[cfg(not(feature = "parallel"))]
-        let bufs: Vec<Vec<u8>> = batch.chunks(CHUNK).map(format).collect();
-        for (k, buf) in bufs.iter().enumerate() {
+        batch.chunks(CHUNK).zip(bufs.iter_mut()).for_each(format);
+        let used = batch.len().div_ceil(CHUNK);
+        for (k, buf) in bufs[..used].iter().enumerate() {
             // no comma before the first item
             let skip = usize::from(b == 0 && k == 0);
             out.write_all(&buf[skip..])?;
@@ -133,7 +137,8 @@ mod tests {
         let mut streamed = Vec::new();
         write_diagram_to(&d, &mut streamed).unwrap();
         assert_eq!(String::from_utf8(streamed).unwrap(), write_diagram(&d));
-        for i in 0..100_000 {
+        // more than one batch of chunks, so buffers are reused
+        for i in 0..300_000 {
             let p = Point::new(i as f64 / 7.0, -1.0 / (i as f64 + 1.0));
             d.vertices.push(Vertex {
                 at: p,

@@ -7,9 +7,12 @@
 //!
 //! Uniform random points in the unit square (fixed seed), n = 10^4 .. 10^max, then a
 //! square grid of about 10^max points (every Voronoi vertex has four sites). Columns:
-//! our graph only (`PointDiagram::new`), the conversion alone (`to_complex`), graph + clipped `VoronoiComplex`
-//! (`points_voronoi`), spade's `bulk_load`, and the ratios to spade. Best of three
-//! runs below 10^6, one run at 10^6 and above.
+//! our graph only (`PointDiagram::new`), the conversion alone (`to_complex`), the
+//! conversion with the cells traced from the faces (`to_complex_with_cells`, what
+//! `gvd compute` does after the graph), graph + clipped `VoronoiComplex`
+//! (`points_voronoi`), the diagram with cells as JSON (`write_diagram_to` into a
+//! buffer), spade's `bulk_load`, and the ratios to spade. Best of three runs below
+//! 10^6, one run at 10^6 and above.
 
 use gvd::geom::{Aabb, Point};
 use gvd::incremental::{points_voronoi, PointDiagram};
@@ -46,11 +49,13 @@ fn main() {
         .unwrap_or(6);
     let domain = Aabb::from_array([0.0, 0.0, 1.0, 1.0]);
     println!(
-        "{:>12} {:>10} {:>10} {:>13} {:>10} {:>11} {:>12} {:>10} {:>10}",
+        "{:>12} {:>10} {:>10} {:>10} {:>13} {:>10} {:>10} {:>11} {:>12} {:>10} {:>10}",
         "n",
         "graph s",
         "output s",
+        "+cells s",
         "graph+out s",
+        "json s",
         "spade s",
         "graph/spade",
         "total/spade",
@@ -86,7 +91,17 @@ fn main() {
         });
         assert_eq!(d.topology_counts().0, 0);
         let (t_out, out) = best_of(runs, || d.to_complex());
-        drop((d, out));
+        drop(out);
+        let (t_cells, (with_cells, traced)) = best_of(runs, || d.to_complex_with_cells());
+        assert!(traced);
+        drop(d);
+        let (t_json, bytes) = best_of(runs, || {
+            let mut buf = Vec::new();
+            gvd::io::json::write_diagram_to(&with_cells, &mut buf).expect("in memory");
+            buf.len()
+        });
+        assert!(bytes > 0);
+        drop(with_cells);
         let (t_total, out) = best_of(runs, || points_voronoi(pts, domain).expect("valid input"));
         let sp: Vec<Point2<f64>> = pts.iter().map(|p| Point2::new(p.x, p.y)).collect();
         let (t_spade, t) = best_of(runs, || {
@@ -94,11 +109,13 @@ fn main() {
         });
         assert_eq!(t.num_vertices(), n);
         println!(
-            "{:>12} {:>10.3} {:>10.3} {:>13.3} {:>10.3} {:>11.2} {:>12.2} {:>10} {:>10}",
+            "{:>12} {:>10.3} {:>10.3} {:>10.3} {:>13.3} {:>10.3} {:>10.3} {:>11.2} {:>12.2} {:>10} {:>10}",
             name,
             t_graph,
             t_out,
+            t_cells,
             t_total,
+            t_json,
             t_spade,
             t_graph / t_spade,
             t_total / t_spade,

@@ -69,12 +69,18 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {
             return timed_incremental(|| {
-                let mut complex = incremental::points_voronoi(&points, scene.domain)?;
-                if !points.is_empty() {
+                let diagram = incremental::PointDiagram::new(&points, scene.domain)?;
+                let (mut complex, traced) = diagram.to_complex_with_cells();
+                drop(diagram);
+                if !traced {
+                    // Not expected with exact signs: the generic cells from the edges.
                     let grid = PointGrid::new(&points);
                     complex.cells = cells::build_cells(&complex, &scene.domain, &|q| {
                         grid.nearest(q).unwrap_or(0)
                     });
+                    complex
+                        .stats
+                        .insert("cells_from_edges".into(), serde_json::json!(true));
                 }
                 Ok(complex)
             });

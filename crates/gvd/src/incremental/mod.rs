@@ -24,6 +24,7 @@
 //! assert_eq!(d.edges.len(), 3);
 //! ```
 
+mod cells;
 mod graph;
 mod insert;
 pub mod linear;
@@ -252,7 +253,17 @@ impl PointDiagram {
 
     /// The diagram clipped to the domain (see [`points_voronoi`]).
     pub fn to_complex(&self) -> VoronoiComplex {
-        output::to_complex(self)
+        output::to_complex(self, false).0
+    }
+
+    /// [`to_complex`](Self::to_complex) with `cells`: each site's face, a convex
+    /// polygon, clipped to the domain (the complex's own edge segments, joined along the
+    /// domain boundary with the corners the cell holds); one counter-clockwise ring per
+    /// site whose cell meets the domain with positive area, sorted by site. The flag is
+    /// `false` if some face could not be traced consistently (not expected with exact
+    /// signs); `cells` is then left empty, for [`crate::cells::build_cells`] to fill.
+    pub fn to_complex_with_cells(&self) -> (VoronoiComplex, bool) {
+        output::to_complex(self, true)
     }
 }
 

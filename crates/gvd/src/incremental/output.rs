@@ -1,10 +1,11 @@
 //! From the half-edge graph to the clipped [`VoronoiComplex`].
 
+use super::cells::{face_cells, Inconsistent};
 use super::graph::GHOST;
 use super::predicates::{circumcenter, incircle};
 use super::PointDiagram;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
-use crate::geom::Point;
+use crate::geom::{Aabb, Point};
 
 /// Union–find with path halving.
 fn find(parent: &mut [u32], mut v: u32) -> u32 {
@@ -25,7 +26,9 @@ struct Node {
     out: u32,
 }
 
-pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
+/// The clipped complex; with `with_cells`, also its cells traced from the graph's faces
+/// (`false` when a face could not be traced consistently; `cells` is then empty).
+pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex, bool) {
     let g = &d.graph;
     let n = d.input.len() as u32;
     let nv = g.gens.len();
@@ -117,48 +120,10 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
         if (h as u32) > t {
             continue;
         }
-        let (a, b) = (g.right(h as u32), g.left(h as u32));
-        if a >= n || b >= n {
+        let Some(((start, end), (from, to))) = clip(d, &nodes, h as u32) else {
             continue;
-        }
-        let (nu, nw) = (nodes[h / 3], nodes[t as usize / 3]);
-        if nu.group == nw.group {
-            continue;
-        }
-        let (from, to) = (
-            (nu.out != u32::MAX).then_some(nu.out as usize),
-            (nw.out != u32::MAX).then_some(nw.out as usize),
-        );
-        let (start, end) = if from.is_some() && to.is_some() {
-            (nu.at, nw.at)
-        } else {
-            // Clip on the bisector m + s·dir, dir = (a − b)⊥ (from u to w, b on the left):
-            // parameters stay accurate when a vertex is very far away.
-            let (pa, pb) = (pos(a), pos(b));
-            let (m, dir) = (pa.lerp(pb, 0.5), (pa - pb).perp());
-            let param = |p: Point| (p - m).dot(dir) / dir.dot(dir);
-            let Some((s0, s1)) = d.domain.line_range(m, dir) else {
-                continue;
-            };
-            let lo = if from.is_some() {
-                param(nu.at)
-            } else {
-                param(nu.at).max(s0)
-            };
-            let hi = if to.is_some() {
-                param(nw.at)
-            } else {
-                param(nw.at).min(s1)
-            };
-            if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
-                continue;
-            }
-            let on_line = |s: f64| d.domain.clamp(m + dir * s);
-            (
-                if from.is_some() { nu.at } else { on_line(lo) },
-                if to.is_some() { nw.at } else { on_line(hi) },
-            )
         };
+        let (a, b) = (g.right(h as u32), g.left(h as u32));
         edges.push(Edge {
             sites: [site(b), site(a)],
             from,
@@ -172,6 +137,24 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
         edges,
         ..Default::default()
     };
+    let mut traced = true;
+    if with_cells {
+        // The same segments as the edges, in the direction of each half-edge.
+        let segment = |h: u32| {
+            let t = g.twin[h as usize];
+            let ((p, q), _) = clip(d, &nodes, h.min(t))?;
+            Some(if h < t {
+                (p * inv, q * inv)
+            } else {
+                (q * inv, p * inv)
+            })
+        };
+        let domain = Aabb::new(d.domain.min * inv, d.domain.max * inv);
+        match face_cells(d, segment, domain) {
+            Ok(cells) => c.cells = cells,
+            Err(Inconsistent) => traced = false,
+        }
+    }
     let stat = |v: usize| serde_json::Value::from(v);
     c.stats.insert("sites".into(), stat(d.input.len()));
     c.stats
@@ -184,5 +167,61 @@ pub(super) fn to_complex(d: &PointDiagram) -> VoronoiComplex {
         .insert("seed_fallbacks".into(), stat(d.seed_fallbacks));
     c.stats.insert("vertices".into(), stat(c.vertices.len()));
     c.stats.insert("edges".into(), stat(c.edges.len()));
-    c
+    (c, traced)
+}
+
+/// The edge of half-edge `h` (`h < twin(h)`, from `u = h / 3` to `w = twin(h) / 3`) as
+/// output: its segment clipped to the domain (scaled coordinates) and its end vertices'
+/// output indices, or `None` when it separates a far generator, joins two vertices of
+/// one group, or meets the domain in less than a segment.
+#[allow(clippy::type_complexity)]
+#[inline]
+fn clip(
+    d: &PointDiagram,
+    nodes: &[Node],
+    h: u32,
+) -> Option<((Point, Point), (Option<usize>, Option<usize>))> {
+    let g = &d.graph;
+    let n = d.input.len() as u32;
+    let t = g.twin[h as usize];
+    let (a, b) = (g.right(h), g.left(h));
+    if a >= n || b >= n {
+        return None;
+    }
+    let (nu, nw) = (nodes[h as usize / 3], nodes[t as usize / 3]);
+    if nu.group == nw.group {
+        return None;
+    }
+    let (from, to) = (
+        (nu.out != u32::MAX).then_some(nu.out as usize),
+        (nw.out != u32::MAX).then_some(nw.out as usize),
+    );
+    if from.is_some() && to.is_some() {
+        return Some(((nu.at, nw.at), (from, to)));
+    }
+    // Clip on the bisector m + s·dir, dir = (a − b)⊥ (from u to w, b on the left):
+    // parameters stay accurate when a vertex is very far away.
+    let (pa, pb) = (d.pts[a as usize], d.pts[b as usize]);
+    let (m, dir) = (pa.lerp(pb, 0.5), (pa - pb).perp());
+    let param = |p: Point| (p - m).dot(dir) / dir.dot(dir);
+    let (s0, s1) = d.domain.line_range(m, dir)?;
+    let lo = if from.is_some() {
+        param(nu.at)
+    } else {
+        param(nu.at).max(s0)
+    };
+    let hi = if to.is_some() {
+        param(nw.at)
+    } else {
+        param(nw.at).min(s1)
+    };
+    if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
+        return None;
+    }
+    let on_line = |s: f64| d.domain.clamp(m + dir * s);
+    let ends = (
+        if from.is_some() { nu.at } else { on_line(lo) },
+        if to.is_some() { nw.at } else { on_line(hi) },
+    );
+    Some((ends, (from, to)))
 }

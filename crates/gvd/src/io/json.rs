@@ -30,6 +30,67 @@ pub fn write_diagram(diagram: &VoronoiComplex) -> String {
     serde_json::to_string(diagram).unwrap_or_default()
 }
 
+/// [`write_diagram`] into `out` (the same bytes), without holding the whole text: for
+/// large diagrams written to a file. Large lists are formatted in chunks, in parallel
+/// with the `parallel` feature. Give a buffered writer; only `out`'s errors are
+/// returned.
+pub fn write_diagram_to<W: std::io::Write>(
+    diagram: &VoronoiComplex,
+    out: &mut W,
+) -> std::io::Result<()> {
+    // The field order and the skipped empty `cells` of `VoronoiComplex`'s derive.
+    out.write_all(b"{\"vertices\":")?;
+    write_list(&diagram.vertices, out)?;
+    out.write_all(b",\"edges\":")?;
+    write_list(&diagram.edges, out)?;
+    if !diagram.cells.is_empty() {
+        out.write_all(b",\"cells\":")?;
+        write_list(&diagram.cells, out)?;
+    }
+    out.write_all(b",\"stats\":")?;
+    serde_json::to_writer(&mut *out, &diagram.stats)?;
+    out.write_all(b"}")
+}
+
+/// A JSON array of `items`, as serde_json writes it: chunks formatted into buffers (in
+/// parallel, a bounded number at a time, the buffers reused), then written in order.
+fn write_list<T: serde::Serialize + Sync, W: std::io::Write>(
+    items: &[T],
+    out: &mut W,
+) -> std::io::Result<()> {
+    const CHUNK: usize = 1 << 14;
+    const BATCH: usize = 16;
+    let format = |(chunk, buf): (&[T], &mut Vec<u8>)| {
+        buf.clear();
+        for item in chunk {
+            buf.push(b',');
+            // plain data into a vector: cannot fail
+            serde_json::to_writer(&mut *buf, item).unwrap_or_default();
+        }
+    };
+    let mut bufs: Vec<Vec<u8>> = vec![Vec::new(); BATCH.min(items.len().div_ceil(CHUNK))];
+    out.write_all(b"[")?;
+    for (b, batch) in items.chunks(CHUNK * BATCH).enumerate() {
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            batch
+                .par_chunks(CHUNK)
+                .zip(bufs.par_iter_mut())
+                .for_each(format);
+        }
+        #[cfg(not(feature = "parallel"))]
+        batch.chunks(CHUNK).zip(bufs.iter_mut()).for_each(format);
+        let used = batch.len().div_ceil(CHUNK);
+        for (k, buf) in bufs[..used].iter().enumerate() {
+            // no comma before the first item
+            let skip = usize::from(b == 0 && k == 0);
+            out.write_all(&buf[skip..])?;
+        }
+    }
+    out.write_all(b"]")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -51,6 +112,9 @@ mod tests {
             ..Default::default()
         };
         let text = write_diagram(&d);
+        let mut streamed = Vec::new();
+        write_diagram_to(&d, &mut streamed).unwrap();
+        assert_eq!(String::from_utf8(streamed).unwrap(), text);
         assert!(
             text.contains("\"points\":[[0.1,-0.2],[0.3333333333333333,2.0]]"),
             "{text}"
@@ -65,5 +129,41 @@ mod tests {
         assert!(matches!(read_diagram("[1, 2"), Err(Error::Diagram(_))));
         let huge = r#"{"vertices": [{"at": [1e999, 0], "sites": [0]}], "edges": []}"#;
         assert!(matches!(read_diagram(huge), Err(Error::Diagram(_))));
+    }
+
+    #[test]
+    fn streamed_text_is_the_same_for_long_and_empty_lists() {
+        let mut d = VoronoiComplex::default();
+        let mut streamed = Vec::new();
+        write_diagram_to(&d, &mut streamed).unwrap();
+        assert_eq!(String::from_utf8(streamed).unwrap(), write_diagram(&d));
+        // more than one batch of chunks, so buffers are reused
+        for i in 0..300_000 {
+            let p = Point::new(i as f64 / 7.0, -1.0 / (i as f64 + 1.0));
+            d.vertices.push(Vertex {
+                at: p,
+                sites: vec![Generator::Site(i), Generator::Site(i + 1)],
+            });
+            if i % 3 == 0 {
+                d.edges.push(Edge {
+                    sites: [Generator::Site(i), Generator::Site(i + 2)],
+                    from: Some(i),
+                    to: None,
+                    points: vec![p, Point::new(0.5, 1e-300)],
+                });
+            }
+        }
+        d.cells.push(crate::complex::Cell {
+            site: 3,
+            rings: vec![vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 0.0),
+                Point::new(0.0, 1.0),
+            ]],
+        });
+        d.stats.insert("seconds".into(), serde_json::json!(0.25));
+        let mut streamed = Vec::new();
+        write_diagram_to(&d, &mut streamed).unwrap();
+        assert_eq!(String::from_utf8(streamed).unwrap(), write_diagram(&d));
     }
 }

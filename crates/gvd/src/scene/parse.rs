@@ -1000,6 +1000,18 @@ mod tests {
             {"kind": "point", "at": [0, 0], "metric": {"kind": "power", "weight": 0.1}}
         ]});
         assert!(scene_from_value(&v).is_ok());
+        // The first repeating site is named, with the first earlier site it repeats.
+        let v = json!({"domain": [-2, -2, 2, 2], "sites": [
+            {"kind": "point", "at": [0, 0], "metric": {"kind": "power", "weight": 0.1}},
+            {"kind": "point", "at": [1, 1]},
+            {"kind": "point", "at": [0, 0]},
+            {"kind": "circle", "center": [1, 1], "radius": 0.5},
+            {"kind": "point", "at": [0, 0]},
+            {"kind": "point", "at": [0, 0], "metric": {"kind": "power", "weight": 0.1}},
+            {"kind": "point", "at": [1, 1]}
+        ]});
+        let (site, _, message) = refusal(v);
+        assert_eq!((site, message.as_str()), (Some(4), "duplicate of site 2"));
     }
 
     #[test]

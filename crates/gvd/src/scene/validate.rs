@@ -4,7 +4,6 @@
 use super::{Site, SiteKind};
 use crate::geom::Point;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 
 /// The sign of the orientation of `(a, b, c)`: `Greater` when counter-clockwise (exact).
 fn orient(a: Point, b: Point, c: Point) -> Ordering {
@@ -189,22 +188,36 @@ fn inside(ring: &[Point], p: Point) -> bool {
 /// The first point site that repeats an earlier one (same location and same metric), as
 /// `(later, earlier)` site indices.
 pub(super) fn duplicate_point(sites: &[Site]) -> Option<(usize, usize)> {
+    // Sorted by location (then index), equal locations are runs: no hashing and no
+    // allocation per point, which counts at a million points.
     let key = |p: Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
-    let mut seen: HashMap<(u64, u64), Vec<usize>> = HashMap::new();
-    for (i, site) in sites.iter().enumerate() {
-        let SiteKind::Point { at, metric } = &site.kind else {
-            continue;
-        };
-        let earlier = seen.entry(key(*at)).or_default();
-        let same = earlier
-            .iter()
-            .find(|&&j| matches!(&sites[j].kind, SiteKind::Point { metric: m, .. } if m == metric));
-        if let Some(&j) = same {
-            return Some((i, j));
+    let mut points: Vec<((u64, u64), usize)> = sites
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| match &s.kind {
+            SiteKind::Point { at, .. } => Some((key(*at), i)),
+            _ => None,
+        })
+        .collect();
+    points.sort_unstable();
+    let metric = |i: usize| match &sites[i].kind {
+        SiteKind::Point { metric, .. } => Some(metric),
+        _ => None,
+    };
+    let mut first: Option<(usize, usize)> = None;
+    for run in points.chunk_by(|a, b| a.0 == b.0).filter(|r| r.len() > 1) {
+        // The earliest point of the run repeating an earlier one of the same metric.
+        for (k, &(_, i)) in run.iter().enumerate().skip(1) {
+            if first.is_some_and(|(f, _)| f < i) {
+                break;
+            }
+            if let Some(&(_, j)) = run[..k].iter().find(|&&(_, j)| metric(j) == metric(i)) {
+                first = Some((i, j));
+                break;
+            }
         }
-        earlier.push(i);
     }
-    None
+    first
 }
 
 #[cfg(test)]

@@ -160,8 +160,9 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
         s.push_str("</g>\n");
     }
     write_domain(&mut s, scene, &f, size);
-    write_edges(&mut s, diagram, &f, "#1a1a2e", &sw(0.0025));
+    // Sites under the edges: a polygon's fill would hide its medial axis.
     write_sites(&mut s, scene, &f, size);
+    write_edges(&mut s, diagram, &f, "#2b6cb0", &sw(0.0025));
     let _ = writeln!(s, "<g id=\"vertices\" fill=\"#d32f2f\">");
     for v in &diagram.vertices {
         let _ = writeln!(

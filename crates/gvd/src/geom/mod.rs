@@ -51,6 +51,12 @@ impl Point {
     pub fn dist(self, o: Point) -> f64 {
         (self - o).norm()
     }
+    /// The squared distance.
+    #[inline]
+    pub fn dist2(self, o: Point) -> f64 {
+        let d = self - o;
+        d.dot(d)
+    }
     /// The vector rotated by +90°.
     #[inline]
     pub fn perp(self) -> Point {

@@ -17,7 +17,7 @@
 //! about `√(δ·y)` wide at distance `y`, for the point's distance `δ` to the segment),
 //! which samples at fixed fractions miss.
 
-use super::geometry::{Bisector, Line};
+use super::geometry::{Arc, Bisector, Clearance, Line};
 use crate::geom::Point;
 
 /// An interval of fractions, claimed by the segment or not.
@@ -35,8 +35,9 @@ impl Piece {
 }
 
 /// The maximal claimed and unclaimed intervals of the bisector piece from `from` to
-/// `to`, in order from `from`.
+/// `to`, in order from `from`, for a new segment `line`.
 pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line) -> Vec<Piece> {
+    let claims = |x: Point, t: f64| line.claims(x, t);
     let sample = |lambda: f64| {
         let (x, t) = bis.at_fraction(from, to, lambda);
         let (f, h) = line.coords(x);
@@ -44,9 +45,73 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
     };
     let s = [sample(0.0), sample(0.5), sample(1.0)];
     let quad = |value: &dyn Fn((f64, f64, f64)) -> f64| interpolate(s.map(value));
-    let mut breaks: Vec<f64> = Vec::with_capacity(12);
-    let mut extrema: Vec<f64> = Vec::with_capacity(4);
-    let mut add_roots = |c: [f64; 3]| {
+    let mut quads = vec![quad(&|(f, _, _)| f), quad(&|(f, _, _)| f - line.len)];
+    match bis {
+        Bisector::Conic(_) => return sampled_pieces(bis, from, to, claims),
+        Bisector::Parabola { .. } => {
+            quads.push(quad(&|(_, h, t)| t - h));
+            quads.push(quad(&|(_, h, t)| t + h));
+        }
+        Bisector::Line { .. } | Bisector::Chord { .. } => {
+            quads.push(quad(&|(_, h, t)| h * h - t * t));
+        }
+    }
+    pieces_between_roots(bis, from, to, &quads, claims)
+}
+
+/// The same for a new arc `(c, r)` with wedge `a0 < ∠(x − c) < a0 + span`, exact on
+/// straight bisectors whose clearance is the distance to a point or a line:
+///
+/// * the wedge's sides `(x − c) × e_k = 0` are linear in `λ`;
+/// * `|x − c| = r ± t`: with a point's clearance `t² = |x − p|²`, `D = |x − c|² − t² −
+///   r²` is linear and the condition is `D² − 4r²t² = 0`, a quadratic; with a line's
+///   signed offset `t = ±h`, `|x − c|² − (r ± h)² = 0` are two quadratics.
+///
+/// Conics and parabolas are sampled.
+pub(crate) fn arc_pieces(bis: &Bisector, from: Point, to: Point, arc: &Arc) -> Vec<Piece> {
+    let claims = |x: Point, t: f64| arc.claims(x, t);
+    let clearance = match bis {
+        Bisector::Line { clearance, .. } | Bisector::Chord { clearance } => *clearance,
+        _ => return sampled_pieces(bis, from, to, claims),
+    };
+    let sides = [arc.a0, arc.a0 + arc.span].map(|a| Point::new(a.cos(), a.sin()));
+    let x = [0.0, 0.5, 1.0].map(|l| bis.at_fraction(from, to, l));
+    let mut quads: Vec<[f64; 3]> = sides
+        .iter()
+        .map(|e| interpolate(x.map(|(q, _)| e.cross(q - arc.c))))
+        .collect();
+    let r = arc.r;
+    match clearance {
+        Clearance::Point(p) => quads.push(interpolate(x.map(|(q, _)| {
+            let t2 = q.dist2(p);
+            let d = q.dist2(arc.c) - t2 - r * r;
+            d * d - 4.0 * r * r * t2
+        }))),
+        Clearance::Line(l) => {
+            for sign in [1.0, -1.0] {
+                quads.push(interpolate(x.map(|(q, _)| {
+                    let h = l.coords(q).1;
+                    q.dist2(arc.c) - (r + sign * h) * (r + sign * h)
+                })));
+            }
+        }
+        Clearance::Circle { .. } => return sampled_pieces(bis, from, to, claims),
+    }
+    pieces_between_roots(bis, from, to, &quads, claims)
+}
+
+/// Pieces split at the roots in `(0, 1)` of the quadratics `quads` (coefficients of
+/// `λ⁰, λ¹, λ²`), each tested at its middle with `claims`.
+fn pieces_between_roots(
+    bis: &Bisector,
+    from: Point,
+    to: Point,
+    quads: &[[f64; 3]],
+    claims: impl Fn(Point, f64) -> bool,
+) -> Vec<Piece> {
+    let mut breaks: Vec<f64> = Vec::with_capacity(2 * quads.len() + 2);
+    let mut extrema: Vec<f64> = Vec::with_capacity(quads.len());
+    for &c in quads {
         breaks.extend(
             quadratic_roots(c)
                 .into_iter()
@@ -58,18 +123,6 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
         if top > 0.0 && top < 1.0 {
             extrema.push(top);
         }
-    };
-    add_roots(quad(&|(f, _, _)| f));
-    add_roots(quad(&|(f, _, _)| f - line.len));
-    match bis {
-        Bisector::Conic(_) => return sampled_pieces(bis, from, to, |x, t| line.claims(x, t)),
-        Bisector::Parabola { .. } => {
-            add_roots(quad(&|(_, h, t)| t - h));
-            add_roots(quad(&|(_, h, t)| t + h));
-        }
-        Bisector::Line { .. } | Bisector::Chord { .. } => {
-            add_roots(quad(&|(_, h, t)| h * h - t * t));
-        }
     }
     breaks.extend_from_slice(&extrema);
     breaks.push(0.0);
@@ -79,7 +132,7 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
 
     let claims_at = |lambda: f64| {
         let (x, t) = bis.at_fraction(from, to, lambda);
-        line.claims(x, t)
+        claims(x, t)
     };
     let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len());
     let mut push = |lo: f64, hi: f64, claimed: bool| match pieces.last_mut() {
@@ -227,6 +280,64 @@ mod tests {
                     if margin > 1e-9 {
                         assert_eq!(
                             line.claims(x, t),
+                            piece.claimed,
+                            "case {case}: {pieces:?} at {lambda}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
+    }
+
+    /// The same for a new arc, on point/point and segment/segment bisectors (exact
+    /// roots).
+    #[test]
+    fn arc_pieces_agree_with_dense_samples() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut checked = 0;
+        for case in 0..300 {
+            let arc = Arc::new(
+                Point::new(0.5, 0.5),
+                0.1 + 0.3 * rnd(),
+                6.0 * rnd(),
+                6.0 * rnd(),
+                [0, 1],
+            );
+            let mut point = || Point::new(rnd(), rnd());
+            let (p, q) = (point(), point());
+            let other = Line::new(point(), point(), [4, 5]);
+            let third = Line::new(point(), point(), [6, 7]);
+            let bis = if case % 2 == 0 {
+                Bisector::of(Shape::Point(2, p), Shape::Point(3, q), p)
+            } else {
+                Bisector::of(Shape::Segment(&third), Shape::Segment(&other), p)
+            };
+            let (from, to) = (point(), point());
+            let (a, _) = bis.at_fraction(from, to, 0.0);
+            let (b, _) = bis.at_fraction(from, to, 1.0);
+            if !(a.x.is_finite() && b.x.is_finite()) || a.dist(b) > 10.0 {
+                continue;
+            }
+            let pieces = arc_pieces(&bis, a, b, &arc);
+            for piece in &pieces {
+                for k in 1..200 {
+                    let lambda = piece.lo + (piece.hi - piece.lo) * k as f64 / 200.0;
+                    let (x, t) = bis.at_fraction(a, b, lambda);
+                    let margin = ((x.dist(arc.c) - arc.r).abs() - t).abs();
+                    let v = x - arc.c;
+                    let rel = (v.y.atan2(v.x) - arc.a0).rem_euclid(std::f64::consts::TAU);
+                    let wedge_margin = rel.min((rel - arc.span).abs());
+                    if margin > 1e-9 && wedge_margin > 1e-9 {
+                        assert_eq!(
+                            arc.claims(x, t),
                             piece.claimed,
                             "case {case}: {pieces:?} at {lambda}"
                         );

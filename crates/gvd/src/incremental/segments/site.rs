@@ -2,7 +2,7 @@
 //! the same way, an open arc), with its two endpoints already in the diagram.
 
 use super::geometry::{Arc, Bisector, Line};
-use super::pieces::{claimed_pieces, sampled_pieces, Piece};
+use super::pieces::{arc_pieces, claimed_pieces, Piece};
 use crate::geom::Point;
 
 pub(crate) trait NewSite {
@@ -72,6 +72,6 @@ impl NewSite for Arc {
         x.dist(self.c) - self.r
     }
     fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Vec<Piece> {
-        sampled_pieces(bis, from, to, |x, t| self.claims(x, t))
+        arc_pieces(bis, from, to, self)
     }
 }

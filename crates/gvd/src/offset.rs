@@ -6,8 +6,11 @@
 //! curves `{x : dist(x, g) = d}` restricted to `g`'s cell. For a point or a corner `c`
 //! the level curve is the circle `|x − c| = d`; for an edge `[a, b]` it is the two
 //! segments `a ± d n`–`b ± d n` (`n` its unit normal) that bound its perpendicular
-//! strip at distance `d`. A level curve leaves a cell where it crosses a Voronoi edge at
-//! clearance `d`:
+//! strip at distance `d`; for an arc site of circle `(c, r)` it is the two concentric
+//! arcs `|x − c| = r ± d` within the arc's angular span (its wedge), the inner one only
+//! when `d < r` and run clockwise (the site on its left). Coincident points (corners
+//! shared by sites, an arc's end on a segment's) are one feature's circle. A level
+//! curve leaves a cell where it crosses a Voronoi edge at clearance `d`:
 //!
 //! 1. along each diagram edge between `g1` and `g2`, the clearance
 //!    `h(x) = (dist(x, g1) + dist(x, g2)) / 2 − d` changes sign (convex along each
@@ -16,7 +19,8 @@
 //!    change is refined by bisection, then replaced by the exact intersection of the two
 //!    generators' level curves nearest to it (circle–circle, circle–line, line–line);
 //! 2. the level curves are also split where they meet the domain's boundary and, for a
-//!    corner's circle, where its edges' strips begin (the normals at the corner);
+//!    corner's circle, where its edges' strips and its arcs' wedges begin (the normals
+//!    at the corner);
 //! 3. each level curve is cut at its split points (by angle on a circle, by parameter on
 //!    a line); a piece is kept when its midpoint `m` is in the domain, in the wanted
 //!    region, and no feature of the scene is nearer to `m` than `d` (exact distances to

@@ -9,6 +9,12 @@ use std::f64::consts::TAU;
 /// taken as tangent.
 const TANGENT: f64 = 1e-9;
 
+/// Relative slack under which two level curves that cross by rounding are taken as
+/// tangent: `h²` of this size is rounding noise (a few ulps of `r²`) at a tangency, as
+/// between a corner's circle and the sides of the edges and arcs it ends; its square
+/// root would put two points about `1e-8 r` apart where there is one.
+const CROSSING: f64 = 1e-14;
+
 /// One level curve, oriented with its feature on the left.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum Level {
@@ -185,7 +191,8 @@ fn circle_circle(c1: Point, r1: f64, c2: Point, r2: f64) -> Vec<Point> {
     let e = (c2 - c1) * (1.0 / l);
     let a = (r1 * r1 - r2 * r2 + l * l) / (2.0 * l);
     let h2 = r1 * r1 - a * a;
-    chord(c1 + e * a, e.perp(), h2, TANGENT * r1 * (r1 + r2))
+    let size = r1 * (r1 + r2);
+    chord(c1 + e * a, e.perp(), h2, TANGENT * size, CROSSING * size)
 }
 
 /// The line through `a` and `b` against the circle `|x − c| = r`: the foot `f` of `c`,
@@ -193,15 +200,20 @@ fn circle_circle(c1: Point, r1: f64, c2: Point, r2: f64) -> Vec<Point> {
 fn line_circle(a: Point, b: Point, c: Point, r: f64) -> Vec<Point> {
     let u = unit(b - a);
     let f = a + u * (c - a).dot(u);
-    chord(f, u, r * r - c.dist(f).powi(2), TANGENT * r * r)
+    chord(
+        f,
+        u,
+        r * r - c.dist(f).powi(2),
+        TANGENT * r * r,
+        CROSSING * r * r,
+    )
 }
 
-/// `m ± sqrt(h2) u`: two points, one when `h2` is zero or negative within `slack`, none
-/// below.
-fn chord(m: Point, u: Point, h2: f64, slack: f64) -> Vec<Point> {
+/// `m ± sqrt(h2) u`: two points, one when `h2` is in `[−slack, crossing]`, none below.
+fn chord(m: Point, u: Point, h2: f64, slack: f64, crossing: f64) -> Vec<Point> {
     if h2 < -slack {
         Vec::new()
-    } else if h2 <= 0.0 {
+    } else if h2 <= crossing {
         vec![m]
     } else {
         let h = h2.sqrt();

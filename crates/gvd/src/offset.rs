@@ -6,8 +6,11 @@
 //! curves `{x : dist(x, g) = d}` restricted to `g`'s cell. For a point or a corner `c`
 //! the level curve is the circle `|x − c| = d`; for an edge `[a, b]` it is the two
 //! segments `a ± d n`–`b ± d n` (`n` its unit normal) that bound its perpendicular
-//! strip at distance `d`. A level curve leaves a cell where it crosses a Voronoi edge at
-//! clearance `d`:
+//! strip at distance `d`; for an arc site of circle `(c, r)` it is the two concentric
+//! arcs `|x − c| = r ± d` within the arc's angular span (its wedge), the inner one only
+//! when `d < r` and run clockwise (the site on its left). Coincident points (corners
+//! shared by sites, an arc's end on a segment's) are one feature's circle. A level
+//! curve leaves a cell where it crosses a Voronoi edge at clearance `d`:
 //!
 //! 1. along each diagram edge between `g1` and `g2`, the clearance
 //!    `h(x) = (dist(x, g1) + dist(x, g2)) / 2 − d` changes sign (convex along each
@@ -16,7 +19,8 @@
 //!    change is refined by bisection, then replaced by the exact intersection of the two
 //!    generators' level curves nearest to it (circle–circle, circle–line, line–line);
 //! 2. the level curves are also split where they meet the domain's boundary and, for a
-//!    corner's circle, where its edges' strips begin (the normals at the corner);
+//!    corner's circle, where its edges' strips and its arcs' wedges begin (the normals
+//!    at the corner);
 //! 3. each level curve is cut at its split points (by angle on a circle, by parameter on
 //!    a line); a piece is kept when its midpoint `m` is in the domain, in the wanted
 //!    region, and no feature of the scene is nearer to `m` than `d` (exact distances to
@@ -58,8 +62,10 @@ use std::ops::Range;
 pub enum Primitive {
     /// The segment from `from` to `to`.
     Line { from: Point, to: Point },
-    /// The arc of the circle `|x − center| = radius` from `start_angle` counter-clockwise
-    /// to `end_angle` (radians, `start_angle < end_angle ≤ start_angle + 2π`).
+    /// The arc of the circle `|x − center| = radius` from `start_angle` to `end_angle`
+    /// (radians, `start_angle` in `[0, 2π)`, `|end_angle − start_angle| ≤ 2π`):
+    /// counter-clockwise when `start_angle < end_angle`, clockwise (the inner side of an
+    /// arc site) when `end_angle < start_angle`.
     Arc {
         center: Point,
         radius: f64,
@@ -209,8 +215,10 @@ struct LevelCurve {
 struct Run {
     features: Features,
     grid: Grid,
-    /// Per feature, its first level curve (an edge's left line; its right one follows).
-    first: Vec<usize>,
+    /// Per feature, its level curves (an edge's left line, then its right one; an arc's
+    /// outer arc, then its inner one if any); a point shared by several features has
+    /// the level curve of the first.
+    level_range: Vec<Range<usize>>,
     levels: Vec<LevelCurve>,
     d: f64,
     domain: Aabb,
@@ -231,27 +239,40 @@ struct Run {
 
 impl Run {
     fn new(scene: &Scene, features: Features, d: f64) -> Run {
-        let mut first = Vec::with_capacity(features.shapes.len());
+        let mut level_range: Vec<Range<usize>> = Vec::with_capacity(features.shapes.len());
         let mut levels = Vec::new();
-        for s in &features.shapes {
-            first.push(levels.len());
+        for (f, s) in features.shapes.iter().enumerate() {
+            let canonical = features.canonical[f];
+            if canonical != f {
+                level_range.push(level_range[canonical].clone());
+                continue;
+            }
             let curves = match *s {
                 Shape::Point(c) => vec![Level::Circle {
                     center: c,
                     radius: d,
                 }],
                 Shape::Edge { a, b, .. } => Level::beside(a, b, d).to_vec(),
+                Shape::Arc {
+                    center,
+                    radius,
+                    start,
+                    span,
+                    ..
+                } => Level::around(center, radius, start, span, d),
             };
+            let first = levels.len();
             levels.extend(curves.into_iter().map(|level| LevelCurve {
                 level,
                 splits: Vec::new(),
             }));
+            level_range.push(first..levels.len());
         }
         let scale = scene.domain.longest_side().max(d);
         Run {
             grid: Grid::new(&features.shapes, d),
             features,
-            first,
+            level_range,
             levels,
             d,
             domain: scene.domain,
@@ -275,11 +296,19 @@ impl Run {
             )
     }
 
-    /// The level curve of feature `f` on `x`'s side (an edge has one on each side).
+    /// The level curve of feature `f` on `x`'s side (an edge has one on each side, an
+    /// arc one outside and one inside, if `d` is less than its radius).
     fn level_of(&self, f: usize, x: Point) -> usize {
-        match self.features.shapes[f] {
-            Shape::Edge { a, b, .. } if (b - a).cross(x - a) < 0.0 => self.first[f] + 1,
-            _ => self.first[f],
+        let r = &self.level_range[f];
+        let second = match self.features.shapes[f] {
+            Shape::Edge { a, b, .. } => (b - a).cross(x - a) < 0.0,
+            Shape::Arc { center, radius, .. } => x.dist(center) < radius,
+            Shape::Point(_) => false,
+        };
+        if second && r.len() > 1 {
+            r.start + 1
+        } else {
+            r.start
         }
     }
 
@@ -319,20 +348,30 @@ impl Run {
     }
 
     /// Splits each corner's circle where the strips of its edges begin: at `c ± d n`,
-    /// the ends of the edge's lines, with `n` the edge's unit normal.
+    /// the ends of the edge's lines, with `n` the edge's unit normal (for an arc, the
+    /// ends of its outer and inner arcs, on the radii through its ends).
     fn strip_splits(&mut self) {
         for f in 0..self.features.shapes.len() {
-            let Shape::Edge { corners, .. } = self.features.shapes[f] else {
-                continue;
+            let corners = match self.features.shapes[f] {
+                Shape::Edge { corners, .. } | Shape::Arc { corners, .. } => corners,
+                Shape::Point(_) => continue,
             };
-            for side in 0..2 {
-                let Level::Line { from, to } = self.levels[self.first[f] + side].level else {
+            for l in self.level_range[f].clone() {
+                let level = self.levels[l].level;
+                let Some([(_, p0), (_, p1)]) = level.ends() else {
                     continue;
                 };
-                // the left line runs from b to a, the right one from a to b
-                let (at_a, at_b) = if side == 0 { (to, from) } else { (from, to) };
-                self.levels[self.first[corners[0]]].splits.push(at_a);
-                self.levels[self.first[corners[1]]].splits.push(at_b);
+                // a left line runs from b to a; every other side from its feature's start
+                let (at_start, at_end) = match level {
+                    Level::Line { .. } if l == self.level_range[f].start => (p1, p0),
+                    _ => (p0, p1),
+                };
+                let (c0, c1) = (
+                    self.level_range[corners[0]].start,
+                    self.level_range[corners[1]].start,
+                );
+                self.levels[c0].splits.push(at_start);
+                self.levels[c1].splits.push(at_end);
             }
         }
     }
@@ -423,7 +462,9 @@ impl Run {
     fn local_splits(&self, l: usize) -> Vec<Point> {
         let level = self.levels[l].level;
         let (m, reach) = match level {
-            Level::Circle { center, radius } => (center, radius + self.d),
+            Level::Circle { center, radius } | Level::Arc { center, radius, .. } => {
+                (center, radius + self.d)
+            }
             Level::Line { from, to } => (from.lerp(to, 0.5), from.dist(to) / 2.0 + self.d),
         };
         let mut near = Vec::new();
@@ -434,26 +475,25 @@ impl Run {
         near.sort_unstable();
         near.dedup();
         near.into_iter()
-            .flat_map(|f| {
-                self.first[f]..self.first.get(f + 1).copied().unwrap_or(self.levels.len())
-            })
+            .flat_map(|f| self.level_range[f].clone())
             .flat_map(|other| level::intersections(&level, &self.levels[other].level))
-            .filter(|&p| match level {
-                Level::Line { .. } => (0.0..=1.0).contains(&level.param(p)),
-                Level::Circle { .. } => true,
-            })
+            .filter(|&p| level.holds(level.param(p)))
             .collect()
     }
 
-    /// The split points by parameter, with a line's two ends, those closer than `merge`
-    /// (arc length) merged into the first.
+    /// The split points by parameter, with a line's or an arc's two ends, those closer
+    /// than `merge` (arc length) merged into the first.
     fn cuts(&self, level: &Level, splits: &[Point]) -> Vec<(f64, Point)> {
         let mut cuts: Vec<(f64, Point)> = splits.iter().map(|&p| (level.param(p), p)).collect();
-        if let Level::Line { from, to } = *level {
+        if let Some(ends) = level.ends() {
             for c in &mut cuts {
-                c.0 = c.0.clamp(0.0, 1.0);
+                let t = level.clamp(c.0);
+                if t != c.0 {
+                    // beyond an end: that end
+                    *c = (t, level.at(t));
+                }
             }
-            cuts.extend([(0.0, from), (1.0, to)]);
+            cuts.extend(ends);
         }
         cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let step = self.merge / level.speed();
@@ -493,21 +533,53 @@ fn merge_kept(level: &Level, intervals: &[Interval]) -> Vec<Piece> {
         .collect()
 }
 
-/// The piece of `level` from parameter `t0` (point `p0`) to `t1` (point `p1`).
+/// The piece of `level` from parameter `t0` (point `p0`) to `t1` (point `p1`),
+/// reversed on a clockwise arc.
 fn piece(level: &Level, t0: f64, p0: Point, t1: f64, p1: Point) -> Piece {
-    let primitive = match *level {
-        Level::Circle { center, radius } => Primitive::Arc {
+    let (primitive, start, end) = match *level {
+        Level::Circle { center, radius } => (
+            Primitive::Arc {
+                center,
+                radius,
+                start_angle: t0,
+                end_angle: t1,
+            },
+            p0,
+            p1,
+        ),
+        Level::Line { .. } => (Primitive::Line { from: p0, to: p1 }, p0, p1),
+        Level::Arc {
             center,
             radius,
-            start_angle: t0,
-            end_angle: t1,
-        },
-        Level::Line { .. } => Primitive::Line { from: p0, to: p1 },
+            start,
+            ccw,
+            ..
+        } => {
+            // angles from the arc's start, shifted so that the first is in [0, 2π)
+            let first = if ccw { t0 } else { t1 };
+            let shift = (start + first).rem_euclid(TAU) - first;
+            let (a0, a1) = (shift + t0, shift + t1);
+            let (start_angle, end_angle, from, to) = if ccw {
+                (a0, a1, p0, p1)
+            } else {
+                (a1, a0, p1, p0)
+            };
+            (
+                Primitive::Arc {
+                    center,
+                    radius,
+                    start_angle,
+                    end_angle,
+                },
+                from,
+                to,
+            )
+        }
     };
     Piece {
         primitive,
-        start: p0,
-        end: p1,
+        start,
+        end,
     }
 }
 

@@ -223,16 +223,17 @@ fn curve_path(f: &Fmt, curve: &Curve) -> String {
                 radius,
                 ..
             } => {
-                let halves = if end_angle - start_angle > std::f64::consts::PI {
+                let halves = if (end_angle - start_angle).abs() > std::f64::consts::PI {
                     2
                 } else {
                     1
                 };
+                // y is flipped, so counter-clockwise is the negative-angle sweep (0)
+                let sweep = u8::from(end_angle < start_angle);
                 for k in 1..=halves {
-                    // y is flipped, so counter-clockwise is the negative-angle sweep (0)
                     let r = f.num(radius);
                     let end = prim.point_at(k as f64 / halves as f64);
-                    let _ = write!(d, "A{r},{r} 0 0 0 {}", f.pt(end));
+                    let _ = write!(d, "A{r},{r} 0 0 {sweep} {}", f.pt(end));
                 }
             }
         }

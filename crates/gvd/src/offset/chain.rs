@@ -106,7 +106,7 @@ fn is_long_arc(p: &Primitive) -> bool {
             start_angle,
             end_angle,
             ..
-        } => end_angle - start_angle > std::f64::consts::PI,
+        } => (end_angle - start_angle).abs() > std::f64::consts::PI,
         Primitive::Line { .. } => false,
     }
 }

@@ -1,14 +1,17 @@
-//! The scene's features — point sites, corners and edges — with their exact Euclidean
-//! distances, the generators that name them, the regions polygons bound, and a uniform
-//! grid that finds the features near a point.
+//! The scene's features — point sites, corners, edges and arcs — with their exact
+//! Euclidean distances, the generators that name them, the regions polygons bound, and a
+//! uniform grid that finds the features near a point.
 
 use crate::complex::{FeatureKind, Generator};
 use crate::error::Error;
 use crate::geom::{segment_distance, Aabb, Point};
 use crate::scene::{Metric, Scene, SiteKind};
+use std::collections::HashMap;
+use std::f64::consts::TAU;
 use std::ops::Range;
 
-/// One feature: a point (a point site or a corner) or a closed edge `[a, b]`.
+/// One feature: a point (a point site or a corner), a closed edge `[a, b]` or a closed
+/// circular arc.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum Shape {
     Point(Point),
@@ -18,15 +21,42 @@ pub(super) enum Shape {
         b: Point,
         corners: [usize; 2],
     },
+    /// The arc of the circle `(center, radius)` from angle `start` (as the scene gives
+    /// it) counter-clockwise over `span` (in `(0, 2π)`), with the indices of the corner
+    /// features at its start and at its end.
+    Arc {
+        center: Point,
+        radius: f64,
+        start: f64,
+        span: f64,
+        corners: [usize; 2],
+    },
 }
 
 impl Shape {
     /// The Euclidean distance from `q` to the closed feature: `|q − p|` for a point,
-    /// `|q − foot|` for an edge, the foot clamped to `[a, b]`.
+    /// `|q − foot|` for an edge, the foot clamped to `[a, b]`; for an arc, the distance
+    /// to its circle when the direction of `q` from the centre is within the span, else
+    /// to the nearer end.
     pub(super) fn distance(&self, q: Point) -> f64 {
         match *self {
             Shape::Point(p) => q.dist(p),
             Shape::Edge { a, b, .. } => segment_distance(q, a, b),
+            Shape::Arc {
+                center,
+                radius,
+                start,
+                span,
+                ..
+            } => {
+                let v = q - center;
+                if (v.y.atan2(v.x) - start).rem_euclid(TAU) <= span {
+                    (v.norm() - radius).abs()
+                } else {
+                    let [e0, e1] = arc_ends(center, radius, start, span);
+                    q.dist(e0).min(q.dist(e1))
+                }
+            }
         }
     }
 
@@ -37,32 +67,54 @@ impl Shape {
                 Point::new(a.x.min(b.x), a.y.min(b.y)),
                 Point::new(a.x.max(b.x), a.y.max(b.y)),
             ),
+            // the whole circle's box: a little more than needed
+            Shape::Arc { center, radius, .. } => Aabb::new(
+                center - Point::new(radius, radius),
+                center + Point::new(radius, radius),
+            ),
         }
     }
 }
 
+/// The start and end points of an arc, computed as the diagram computes its end
+/// generators (so that an end shared with another site is the same point).
+pub(super) fn arc_ends(center: Point, radius: f64, start: f64, span: f64) -> [Point; 2] {
+    [start, start + span].map(|a| center + Point::new(a.cos(), a.sin()) * radius)
+}
+
 /// Where a site's features sit in the list: corners `start..start + corners` (for a
-/// point site, its one point), then its edges.
+/// point site, its one point), then its edges (an arc's one piece).
 struct SiteFeatures {
     start: usize,
     corners: usize,
     edges: usize,
+    /// What the generators call the features after the corners: edges, or an arc's piece.
+    kind: FeatureKind,
 }
 
 /// Every feature of a scene, in site order.
 pub(super) struct Features {
     pub(super) shapes: Vec<Shape>,
+    /// Per feature, the feature that stands for it: the first point feature at the same
+    /// place for a point (corners shared by sites, point sites on corners are one
+    /// point, as in the diagram), itself otherwise.
+    pub(super) canonical: Vec<usize>,
+    /// Point features by the bits of their coordinates.
+    points: HashMap<(u64, u64), usize>,
     sites: Vec<SiteFeatures>,
     /// The rings of every polygon site (outer ring first, then holes).
     polygons: Vec<Vec<Vec<Point>>>,
 }
 
 impl Features {
-    /// The features of Euclidean points, segments, polylines and polygons (numbered as
-    /// `SCENE_FORMAT.md` numbers corners and edges); other site kinds are refused.
+    /// The features of Euclidean points, segments, arcs, polylines and polygons
+    /// (numbered as `SCENE_FORMAT.md` numbers corners, edges and pieces); other site
+    /// kinds, and full-circle arcs, are refused.
     pub(super) fn of_scene(scene: &Scene) -> Result<Features, Error> {
         let mut f = Features {
             shapes: Vec::new(),
+            canonical: Vec::new(),
+            points: HashMap::new(),
             sites: Vec::new(),
             polygons: Vec::new(),
         };
@@ -82,12 +134,28 @@ impl Features {
                     f.push_chain(&corners, &edges);
                     f.polygons.push(rings.clone());
                 }
+                &SiteKind::Arc {
+                    center,
+                    radius,
+                    start_angle,
+                    end_angle,
+                } => {
+                    let span = (end_angle - start_angle).rem_euclid(TAU);
+                    if !(span > 1e-12 && span < TAU - 1e-12) {
+                        return Err(Error::Unsupported {
+                            site: i,
+                            kind: "arc".into(),
+                            message: "offsets are computed for arcs short of a full circle".into(),
+                        });
+                    }
+                    f.push_arc(center, radius, start_angle, span);
+                }
                 other => {
                     return Err(Error::Unsupported {
                         site: i,
                         kind: other.name().to_string(),
                         message: "offsets are computed for Euclidean points, segments, \
-                                  polylines and polygons (so far)"
+                                  arcs, polylines and polygons (so far)"
                             .into(),
                     })
                 }
@@ -96,19 +164,60 @@ impl Features {
         Ok(f)
     }
 
+    /// Appends one point feature, standing for the first point feature at its place.
+    fn push_point(&mut self, p: Point) {
+        let k = self.shapes.len();
+        // −0.0 and 0.0 are the same point
+        let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+        self.canonical.push(*self.points.entry(key).or_insert(k));
+        self.shapes.push(Shape::Point(p));
+    }
+
+    /// Appends one feature that stands for itself.
+    fn push_shape(&mut self, s: Shape) {
+        self.canonical.push(self.shapes.len());
+        self.shapes.push(s);
+    }
+
     /// Appends one site's corners and its edges (pairs of corner numbers).
     fn push_chain(&mut self, corners: &[Point], edges: &[(usize, usize)]) {
         let start = self.shapes.len();
-        self.shapes.extend(corners.iter().map(|&p| Shape::Point(p)));
-        self.shapes.extend(edges.iter().map(|&(i, j)| Shape::Edge {
-            a: corners[i],
-            b: corners[j],
-            corners: [start + i, start + j],
-        }));
+        for &p in corners {
+            self.push_point(p);
+        }
+        for &(i, j) in edges {
+            self.push_shape(Shape::Edge {
+                a: corners[i],
+                b: corners[j],
+                corners: [start + i, start + j],
+            });
+        }
         self.sites.push(SiteFeatures {
             start,
             corners: corners.len(),
             edges: edges.len(),
+            kind: FeatureKind::Edge,
+        });
+    }
+
+    /// Appends an arc site: its start and end corners, then its piece.
+    fn push_arc(&mut self, center: Point, radius: f64, start: f64, span: f64) {
+        let first = self.shapes.len();
+        for p in arc_ends(center, radius, start, span) {
+            self.push_point(p);
+        }
+        self.push_shape(Shape::Arc {
+            center,
+            radius,
+            start,
+            span,
+            corners: [first, first + 1],
+        });
+        self.sites.push(SiteFeatures {
+            start: first,
+            corners: 2,
+            edges: 1,
+            kind: FeatureKind::Piece,
         });
     }
 
@@ -121,7 +230,11 @@ impl Features {
             Generator::Feature { feature, index, .. } => {
                 let k = match feature {
                     FeatureKind::Corner if index < s.corners => s.start + index,
-                    FeatureKind::Edge if index < s.edges => s.start + s.corners + index,
+                    FeatureKind::Edge | FeatureKind::Piece
+                        if feature == s.kind && index < s.edges =>
+                    {
+                        s.start + s.corners + index
+                    }
                     _ => return None,
                 };
                 Some(k..k + 1)

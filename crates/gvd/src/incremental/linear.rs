@@ -142,8 +142,22 @@ impl Generators {
                 _ => {}
             }
         }
+        // An arc's ends are computed (centre + radius · direction), so they may miss a
+        // segment's or another arc's end by an ulp: within 1e-12 of the domain they are
+        // that point.
+        let mut snap = Snap::new(1e-12 * scene.domain.longest_side(), &g.points);
         for (i, mut arc) in arc_sites {
-            arc.ends = [0, 1].map(|k| point(&mut g, arc.end_point(k), (i, Some(k))));
+            arc.ends = [0, 1].map(|k| {
+                let end = arc.end_point(k);
+                match snap.find(&g.points, end) {
+                    Some(id) => id,
+                    None => {
+                        let id = point(&mut g, end, (i, Some(k)));
+                        snap.insert(end, id);
+                        id
+                    }
+                }
+            });
             g.arcs.push(arc);
             g.arc_owner.push(i);
         }
@@ -228,6 +242,51 @@ impl Generators {
             }
         }
         inside
+    }
+}
+
+/// Points within `tol` of each other, by a hash grid of cell `tol`.
+struct Snap {
+    tol: f64,
+    cells: HashMap<(i64, i64), Vec<u32>>,
+}
+
+impl Snap {
+    fn new(tol: f64, points: &[Point]) -> Snap {
+        let mut snap = Snap {
+            tol,
+            cells: HashMap::new(),
+        };
+        for (id, &p) in points.iter().enumerate() {
+            snap.insert(p, id as u32);
+        }
+        snap
+    }
+
+    fn cell(&self, p: Point) -> (i64, i64) {
+        ((p.x / self.tol).floor() as i64, (p.y / self.tol).floor() as i64)
+    }
+
+    fn insert(&mut self, p: Point, id: u32) {
+        let key = self.cell(p);
+        self.cells.entry(key).or_default().push(id);
+    }
+
+    /// The nearest point within `tol` of `p`.
+    fn find(&self, points: &[Point], p: Point) -> Option<u32> {
+        let (cx, cy) = self.cell(p);
+        let mut best: Option<(f64, u32)> = None;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for &id in self.cells.get(&(cx + dx, cy + dy)).into_iter().flatten() {
+                    let d = points[id as usize].dist(p);
+                    if d <= self.tol && best.is_none_or(|(b, _)| d < b) {
+                        best = Some((d, id));
+                    }
+                }
+            }
+        }
+        best.map(|(_, id)| id)
     }
 }
 

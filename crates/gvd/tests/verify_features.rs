@@ -343,3 +343,43 @@ fn labels_must_fit_the_mode() {
     bad.edges[0].sites[0] = corner(0, 1000);
     assert!(!check(&s, &bad).passed);
 }
+
+/// A convex polygon in `complex` mode has no Voronoi edges outside it (only zone
+/// boundaries). Where a corner's wedge is narrower than the grid, two neighbouring nodes
+/// name the corner's two edges, and the bisection between them ends on the corner's
+/// zone boundary: that crossing must be skipped (the shared checker reports it).
+#[test]
+fn narrow_corner_wedges_are_not_missing_edges() {
+    let p = Point::new;
+    let s = Scene {
+        domain: Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
+        epsilon: 1e-3,
+        mode: Mode::Complex,
+        sites: vec![Site {
+            id: None,
+            kind: SiteKind::Polygon {
+                rings: vec![vec![
+                    p(0.8957248794821712, 1.2945652184316796),
+                    p(-0.6732639262764998, 1.4230031096491547),
+                    p(-1.568988805758671, 0.1284378912174756),
+                    p(-0.8957248794821714, -1.2945652184316794),
+                    p(0.673263926276499, -1.4230031096491549),
+                    p(1.568988805758671, -0.1284378912174751),
+                ]],
+            },
+        }],
+    };
+    for grid in [128, 512] {
+        let opts = VerifyOptions {
+            grid,
+            ..VerifyOptions::default()
+        };
+        let r = verify(&s, &VoronoiComplex::default(), &opts).unwrap();
+        assert!(
+            r.passed,
+            "grid {grid}: {} {:?}",
+            r.summary_line(),
+            r.problems
+        );
+    }
+}

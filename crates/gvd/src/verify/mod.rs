@@ -20,6 +20,27 @@
 //! * **d. structure** — valid labels and `from`/`to` references, edge ends within tol of
 //!   the vertex they name, which lists the edge's generators; null ends on the domain
 //!   boundary unless the edge is a closed loop.
+//!
+//! Generators (`generators.rs`): whole sites in `voronoi` mode (a polyline or polygon
+//! is the union of its segments, a polygon's inside masked: it belongs to no cell, and
+//! an edge sample there counts its depth); in `complex` and `medial_axis` modes the
+//! corners, edges and arc pieces of segments, polylines, polygons and arcs, each with
+//! its own field. As in the Python checker, in those modes:
+//!
+//! * an edge between a corner and an edge/piece ending there is a zone boundary, not a
+//!   Voronoi edge: its samples fail unless within `2·tol` of the corner; grid crossings
+//!   between such a pair are skipped;
+//! * an edge/piece is open: where its foot is an end corner the nearest generator is
+//!   that corner (nearest-generator labels, crossings that passed a zone boundary), and
+//!   an edge sample lying beyond an end of its edge/piece generator by more than tol
+//!   fails ("label the corner");
+//! * `medial_axis` mode keeps only the even-odd interior of the polygons and of chains
+//!   of open sites that close up (`region.rs`): samples outside fail by their distance
+//!   to it, grid nodes and crossings outside are skipped.
+//!
+//! One deliberate difference: a crossing whose labels become a corner and its own edge
+//! after that relabelling lies on a zone boundary and is skipped (the Python checker
+//! reports it as missing; it arises where a corner's wedge is narrower than the grid).
 
 mod field;
 mod generators;
@@ -731,6 +752,12 @@ impl<'a> Checker<'a> {
         } else {
             (a, b)
         };
+        // after the relabelling, a corner and its own edge: the crossing lies on that
+        // corner's zone boundary, which is no Voronoi edge (the Python checker keeps
+        // these; they arise where a corner's wedge is narrower than the grid)
+        if self.gens.featured && self.gens.zone_boundary(a, b) {
+            return;
+        }
         let Some(hit) = self.near.at(x) else {
             return;
         };

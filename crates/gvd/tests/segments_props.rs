@@ -16,10 +16,8 @@
 //! * a brute-force soundness check written here (distances to the scene's features,
 //!   no engine code): every edge sample and vertex equidistant from its generators within
 //!   epsilon, with no generator nearer;
-//! * `gvd::verify` (the library behind `gvd verify`, grid 128) for `voronoi` scenes made
-//!   of points and segments only. It does not apply to polylines and polygons (it
-//!   refuses them: "the checker cannot evaluate this kind yet"), nor to other modes; and
-//!   it is not used where two *different* sites share an endpoint (spikes, chains of
+//! * `gvd::verify` (the library behind `gvd verify`, grid 128), in every mode. It is not
+//!   used where two *different* sites share an endpoint (spikes, chains of
 //!   separate segments, polygons as segments): there both sites are nearest through the
 //!   same point over a two-dimensional wedge, and its completeness grid reports
 //!   "missing" edges inside that tie region (see `shared_endpoint_ties_confuse_verify`).
@@ -266,11 +264,7 @@ fn check_scene(s: &Scene) -> Result<(), String> {
     if err > 1.0 {
         return Err(format!("brute force: error {err} eps, {at} ({})", ctx()));
     }
-    let linear_only = s
-        .sites
-        .iter()
-        .all(|x| matches!(x.kind, SiteKind::Point { .. } | SiteKind::Segment { .. }));
-    if s.mode == Mode::Voronoi && linear_only && !shares_points_between_sites(s) {
+    if !shares_points_between_sites(s) {
         let opts = VerifyOptions {
             grid: 128,
             ..VerifyOptions::default()

@@ -5,7 +5,7 @@
 use crate::error::Error;
 use crate::geom::Point;
 use crate::num::poly::Poly;
-use crate::scene::{Metric, Scene, SiteKind};
+use crate::scene::{Metric, SiteKind};
 use std::f64::consts::TAU;
 
 /// One site's distance field, prepared for evaluation.
@@ -23,6 +23,14 @@ pub(super) enum Field {
     Circle { c: Point, r: f64 },
     /// distance to the closed segment `[a, b]`
     Segment { a: Point, b: Point },
+    /// distance to the union of closed segments (a polyline, or a polygon's rings: the
+    /// inside of a polygon is handled by the closed-site masks, see `region.rs`), with
+    /// the bounding box `lo`–`hi` of the segments
+    Chain {
+        segs: Vec<(Point, Point)>,
+        lo: Point,
+        hi: Point,
+    },
     /// distance to the arc of radius `r` about `c` from angle `start`, sweeping `sweep`
     /// counter-clockwise (`sweep ≥ 2π`: the full circle)
     Arc {
@@ -59,81 +67,101 @@ impl Bound {
 }
 
 impl Field {
-    /// Builds the field of every site, or refuses a kind the checker cannot evaluate.
-    pub(super) fn from_scene(scene: &Scene) -> Result<Vec<Field>, Error> {
-        let h = 1e-6 * scene.domain.longest_side();
-        scene
-            .sites
-            .iter()
-            .enumerate()
-            .map(|(i, site)| {
-                Ok(match &site.kind {
-                    SiteKind::Point { at, metric } => match *metric {
-                        Metric::Euclidean => Field::Euclid { p: *at },
-                        Metric::Lp { p } => Field::Lp {
-                            p: *at,
-                            exp: p as i32,
-                        },
-                        Metric::Anisotropic { matrix, weight } => Field::Aniso {
-                            p: *at,
-                            m: matrix,
-                            w: weight,
-                        },
-                        Metric::Power { weight } => Field::Scaled {
-                            p: *at,
-                            s: 1.0,
-                            w: weight * weight,
-                        },
-                        Metric::Moebius { scale, weight } => Field::Scaled {
-                            p: *at,
-                            s: scale,
-                            w: weight,
-                        },
-                    },
-                    SiteKind::Circle { center, radius } => Field::Circle {
-                        c: *center,
-                        r: *radius,
-                    },
-                    SiteKind::Segment { from, to } => Field::Segment { a: *from, b: *to },
-                    SiteKind::Arc {
-                        center,
-                        radius,
-                        start_angle,
-                        end_angle,
-                    } => Field::Arc {
-                        c: *center,
-                        r: *radius,
-                        start: *start_angle,
-                        sweep: crate::scene::arc_sweep(*start_angle, *end_angle),
-                    },
-                    SiteKind::Ellipse {
-                        center,
-                        semi_axes,
-                        rotation,
-                    } => Field::Ellipse {
-                        c: *center,
-                        a: semi_axes[0],
-                        b: semi_axes[1],
-                        rot: *rotation,
-                    },
-                    SiteKind::Field { equation } => Field::Poly {
-                        f: equation.poly.clone(),
-                        h,
-                    },
-                    SiteKind::ImplicitField { equation } => Field::Implicit {
-                        g: equation.poly.clone(),
-                        h,
-                    },
-                    other => {
-                        return Err(Error::Unsupported {
-                            site: i,
-                            kind: other.name().to_string(),
-                            message: "the checker cannot evaluate this kind yet".into(),
-                        })
-                    }
+    /// The field of the whole site `site` (index `i`), or `Unsupported` for a kind the
+    /// checker cannot evaluate. `h` is the step of the central differences.
+    pub(super) fn of_site(i: usize, site: &SiteKind, h: f64) -> Result<Field, Error> {
+        Ok(match site {
+            SiteKind::Point { at, metric } => match *metric {
+                Metric::Euclidean => Field::Euclid { p: *at },
+                Metric::Lp { p } => Field::Lp {
+                    p: *at,
+                    exp: p as i32,
+                },
+                Metric::Anisotropic { matrix, weight } => Field::Aniso {
+                    p: *at,
+                    m: matrix,
+                    w: weight,
+                },
+                Metric::Power { weight } => Field::Scaled {
+                    p: *at,
+                    s: 1.0,
+                    w: weight * weight,
+                },
+                Metric::Moebius { scale, weight } => Field::Scaled {
+                    p: *at,
+                    s: scale,
+                    w: weight,
+                },
+            },
+            SiteKind::Circle { center, radius } => Field::Circle {
+                c: *center,
+                r: *radius,
+            },
+            SiteKind::Segment { from, to } => Field::Segment { a: *from, b: *to },
+            SiteKind::Arc {
+                center,
+                radius,
+                start_angle,
+                end_angle,
+            } => Field::Arc {
+                c: *center,
+                r: *radius,
+                start: *start_angle,
+                sweep: crate::scene::arc_sweep(*start_angle, *end_angle),
+            },
+            SiteKind::Polyline { points } => {
+                Field::chain(points.windows(2).map(|w| (w[0], w[1])).collect())
+            }
+            SiteKind::Polygon { rings } => Field::chain(ring_segments(rings)),
+            SiteKind::Ellipse {
+                center,
+                semi_axes,
+                rotation,
+            } => Field::Ellipse {
+                c: *center,
+                a: semi_axes[0],
+                b: semi_axes[1],
+                rot: *rotation,
+            },
+            SiteKind::Field { equation } => Field::Poly {
+                f: equation.poly.clone(),
+                h,
+            },
+            SiteKind::ImplicitField { equation } => Field::Implicit {
+                g: equation.poly.clone(),
+                h,
+            },
+            other => {
+                return Err(Error::Unsupported {
+                    site: i,
+                    kind: other.name().to_string(),
+                    message: "the checker cannot evaluate this kind yet".into(),
                 })
-            })
-            .collect()
+            }
+        })
+    }
+
+    /// The distance field of a union of segments.
+    pub(super) fn chain(segs: Vec<(Point, Point)>) -> Field {
+        let (mut lo, mut hi) = (
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for &(a, b) in &segs {
+            for p in [a, b] {
+                lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+                hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+            }
+        }
+        Field::Chain { segs, lo, hi }
+    }
+
+    /// The centre of curvature of a curved field (an arc's centre), if it has one.
+    pub(super) fn curvature_center(&self) -> Option<Point> {
+        match *self {
+            Field::Arc { c, .. } => Some(c),
+            _ => None,
+        }
     }
 
     /// The anchor and lower bound used by the nearest-site search.
@@ -191,6 +219,7 @@ impl Field {
                 },
             ),
             Field::Segment { a, b } => radial(a.lerp(b, 0.5), 0.5 * a.dist(b)),
+            Field::Chain { lo, hi, .. } => radial(lo.lerp(hi, 0.5), 0.5 * lo.dist(hi)),
             Field::Arc { c, r, .. } => radial(c, r),
             Field::Ellipse { c, a, b, .. } => radial(c, a.max(b)),
             Field::Poly { .. } | Field::Implicit { .. } => (Point::default(), Bound::None),
@@ -212,7 +241,7 @@ impl Field {
             }
             Field::Circle { c, r } => q.dist(c) - r,
             Field::Segment { a, b } => q.dist(crate::geom::segment_foot(q, a, b)),
-            Field::Arc { .. } => q.dist(self.foot(q).unwrap_or(q)),
+            Field::Arc { .. } | Field::Chain { .. } => q.dist(self.foot(q).unwrap_or(q)),
             Field::Ellipse { .. } if self.inside(q) => 0.0,
             Field::Ellipse { .. } => q.dist(self.foot(q).unwrap_or(q)),
             Field::Poly { ref f, .. } => f.eval(q.x, q.y, 0.0),
@@ -251,12 +280,13 @@ impl Field {
             }
             Field::Scaled { p, s, .. } => (self.value(q), (q - p) * (2.0 * s)),
             Field::Circle { c, .. } => (self.value(q), unit(q - c)),
-            Field::Segment { .. } | Field::Arc { .. } | Field::Ellipse { .. } => {
-                match self.foot(q) {
-                    Some(f) if !self.inside(q) => (q.dist(f), unit(q - f)),
-                    _ => (0.0, Point::default()),
-                }
-            }
+            Field::Segment { .. }
+            | Field::Chain { .. }
+            | Field::Arc { .. }
+            | Field::Ellipse { .. } => match self.foot(q) {
+                Some(f) if !self.inside(q) => (q.dist(f), unit(q - f)),
+                _ => (0.0, Point::default()),
+            },
             Field::Poly { h, .. } | Field::Implicit { h, .. } => {
                 let dx = Point::new(h, 0.0);
                 let dy = Point::new(0.0, h);
@@ -282,6 +312,10 @@ impl Field {
                 Some(if n > 0.0 { c + d * (r / n) } else { c })
             }
             Field::Segment { a, b } => Some(crate::geom::segment_foot(q, a, b)),
+            Field::Chain { ref segs, .. } => segs
+                .iter()
+                .map(|&(a, b)| crate::geom::segment_foot(q, a, b))
+                .min_by(|f, g| q.dist(*f).total_cmp(&q.dist(*g))),
             Field::Arc { c, r, start, sweep } => {
                 let d = q - c;
                 let t = (d.y.atan2(d.x) - start).rem_euclid(TAU);
@@ -340,6 +374,14 @@ impl Field {
             _ => self.foot(q).map_or(f64::INFINITY, |f| q.dist(f)),
         }
     }
+}
+
+/// The boundary segments of a polygon's rings (each ring closed).
+pub(super) fn ring_segments(rings: &[Vec<Point>]) -> Vec<(Point, Point)> {
+    rings
+        .iter()
+        .flat_map(|r| (0..r.len()).map(move |k| (r[k], r[(k + 1) % r.len()])))
+        .collect()
 }
 
 /// The nearest point of the axis-aligned ellipse `(x/a)² + (y/b)² = 1` to an outside

@@ -20,15 +20,39 @@
 //! * **d. structure** — valid labels and `from`/`to` references, edge ends within tol of
 //!   the vertex they name, which lists the edge's generators; null ends on the domain
 //!   boundary unless the edge is a closed loop.
+//!
+//! Generators (`generators.rs`): whole sites in `voronoi` mode (a polyline or polygon
+//! is the union of its segments, a polygon's inside masked: it belongs to no cell, and
+//! an edge sample there counts its depth); in `complex` and `medial_axis` modes the
+//! corners, edges and arc pieces of segments, polylines, polygons and arcs, each with
+//! its own field. As in the Python checker, in those modes:
+//!
+//! * an edge between a corner and an edge/piece ending there is a zone boundary, not a
+//!   Voronoi edge: its samples fail unless within `2·tol` of the corner; grid crossings
+//!   between such a pair are skipped;
+//! * an edge/piece is open: where its foot is an end corner the nearest generator is
+//!   that corner (nearest-generator labels, crossings that passed a zone boundary), and
+//!   an edge sample lying beyond an end of its edge/piece generator by more than tol
+//!   fails ("label the corner");
+//! * `medial_axis` mode keeps only the even-odd interior of the polygons and of chains
+//!   of open sites that close up (`region.rs`): samples outside fail by their distance
+//!   to it, grid nodes and crossings outside are skipped.
+//!
+//! One deliberate difference: a crossing whose labels become a corner and its own edge
+//! after that relabelling lies on a zone boundary and is skipped (the Python checker
+//! reports it as missing; it arises where a corner's wedge is narrower than the grid).
 
 mod field;
+mod generators;
 mod nearest;
+mod region;
 
 use crate::complex::{Generator, VoronoiComplex};
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
 use crate::scene::{Mode, Scene};
 use field::Field;
+use generators::Gens;
 use nearest::Nearest;
 use std::collections::BTreeMap;
 
@@ -95,21 +119,16 @@ impl Report {
 /// How many offenders each check lists.
 const MAX_LIST: usize = 5;
 
-/// Checks `diagram` against `scene`. Refuses scenes the checker cannot evaluate: modes
-/// other than `voronoi`, and site kinds without a distance field here yet.
+/// Checks `diagram` against `scene`. Refuses scenes the checker cannot evaluate: site
+/// kinds without a distance field here yet (Béziers, B-splines, algebraic curves), and
+/// ellipses in `medial_axis` mode.
 pub fn verify(
     scene: &Scene,
     diagram: &VoronoiComplex,
     opts: &VerifyOptions,
 ) -> Result<Report, Error> {
-    if scene.mode != Mode::Voronoi {
-        return Err(Error::scene(
-            "mode",
-            "verify supports only mode 'voronoi' for now",
-        ));
-    }
-    let fields = Field::from_scene(scene)?;
-    let ck = Checker::new(scene, &fields, diagram, opts);
+    let gens = Gens::new(scene)?;
+    let ck = Checker::new(scene, &gens, diagram, opts);
     Ok(ck.run())
 }
 
@@ -247,6 +266,7 @@ struct GoodEdge {
 
 struct Checker<'a> {
     scene: &'a Scene,
+    gens: &'a Gens,
     fields: &'a [Field],
     near: Nearest<'a>,
     diagram: &'a VoronoiComplex,
@@ -257,6 +277,11 @@ struct Checker<'a> {
     edges: Vec<GoodEdge>,
     /// each vertex's generators (deduplicated), `None` if invalid
     vgens: Vec<Option<Vec<usize>>>,
+    /// each vertex's curved generators listed more than once (two branches of one
+    /// curve: with a single branch the vertex must be its centre of curvature)
+    vtwice: Vec<Vec<usize>>,
+    /// `1e-12` of the scene's size (feet this close to a corner are at the corner)
+    tiny: f64,
     errors: Vec<String>,
     warnings: Vec<String>,
 }
@@ -264,20 +289,23 @@ struct Checker<'a> {
 impl<'a> Checker<'a> {
     fn new(
         scene: &'a Scene,
-        fields: &'a [Field],
+        gens: &'a Gens,
         diagram: &'a VoronoiComplex,
         opts: &'a VerifyOptions,
     ) -> Self {
         let mut ck = Checker {
             scene,
-            fields,
-            near: Nearest::new(fields, scene.domain),
+            gens,
+            fields: &gens.fields,
+            near: Nearest::new(gens, scene.domain),
             diagram,
             opts,
             tol: opts.slack * scene.epsilon,
             scale: scene.domain.longest_side(),
             edges: Vec::new(),
             vgens: Vec::new(),
+            vtwice: Vec::new(),
+            tiny: 1e-12 * scene.domain.longest_side(),
             errors: Vec::new(),
             warnings: Vec::new(),
         };
@@ -285,18 +313,14 @@ impl<'a> Checker<'a> {
         ck
     }
 
-    /// A generator's site index, if the label is valid in voronoi mode.
+    /// A label's generator, if the label is valid in the scene's mode.
     fn label(&self, g: &Generator) -> Result<usize, String> {
-        match *g {
-            Generator::Site(i) if i < self.fields.len() => Ok(i),
-            Generator::Site(i) => Err(format!(
-                "site {i} does not exist (the scene has {} sites)",
-                self.fields.len()
-            )),
-            Generator::Feature { site, .. } => Err(format!(
-                "feature generators of site {site} are not valid in voronoi mode"
-            )),
-        }
+        self.gens.parse(g)
+    }
+
+    /// A generator's name in messages.
+    fn name(&self, g: usize) -> String {
+        self.gens.name(g)
     }
 
     /// The structural parse: which edges and vertices can be checked at all.
@@ -313,12 +337,20 @@ impl<'a> Checker<'a> {
             match gens {
                 Ok(mut g) => {
                     g.sort_unstable();
+                    let mut twice: Vec<usize> = g
+                        .windows(2)
+                        .filter(|w| w[0] == w[1] && self.gens.curved[w[0]] && self.gens.featured)
+                        .map(|w| w[0])
+                        .collect();
+                    twice.dedup();
                     g.dedup();
                     self.vgens.push(Some(g));
+                    self.vtwice.push(twice);
                 }
                 Err(m) => {
                     self.errors.push(format!("vertex {k}: {m}"));
                     self.vgens.push(None);
+                    self.vtwice.push(Vec::new());
                 }
             }
         }
@@ -327,9 +359,12 @@ impl<'a> Checker<'a> {
                 Err("'points' must be at least two finite points".to_string())
             } else {
                 match (self.label(&e.sites[0]), self.label(&e.sites[1])) {
-                    (Ok(a), Ok(b)) if a == b => Err(format!(
-                        "both generators are site {a} (an edge separates two different sites)"
-                    )),
+                    (Ok(a), Ok(b)) if a == b && !(self.gens.featured && self.gens.curved[a]) => {
+                        Err(format!(
+                            "both generators are {} (an edge separates two different generators)",
+                            self.name(a)
+                        ))
+                    }
                     (Ok(a), Ok(b)) => Ok((a, b)),
                     (Err(m), _) | (_, Err(m)) => Err(m),
                 }
@@ -378,24 +413,19 @@ impl<'a> Checker<'a> {
     /// intruder; a point inside a closed site counts its depth.
     fn intrusion(&self, q: Point, dmin: f64, gmin: Point, gens: &[usize]) -> (f64, usize) {
         match self.near.at(q) {
-            None => {
-                let depth = self
-                    .fields
-                    .iter()
-                    .map(|f| f.inside_depth(q))
-                    .fold(0.0, f64::max);
-                (depth, usize::MAX)
+            None => (self.near.inside_depth(q), usize::MAX),
+            Some(hit) if !gens.contains(&hit.gen) && dmin > hit.value => {
+                let (_, gk) = self.eval(hit.gen, q);
+                ((dmin - hit.value) / (gmin - gk).norm().max(1e-12), hit.gen)
             }
-            Some(hit) if !gens.contains(&hit.site) && dmin > hit.value => {
-                let (_, gk) = self.eval(hit.site, q);
-                ((dmin - hit.value) / (gmin - gk).norm().max(1e-12), hit.site)
-            }
-            Some(hit) => (0.0, hit.site),
+            Some(hit) => (0.0, hit.gen),
         }
     }
 
-    /// The error of edge sample `q0` of the bisector of `a` and `b`, and why.
-    fn sample_error(&self, q0: Point, a: usize, b: usize) -> (f64, &'static str) {
+    /// Moves `q0` onto the bisector of `a` and `b` (up to 4 Newton steps on `d_a − d_b`,
+    /// each at most 4ε). Returns `e_tie` (distance moved + residual, in length units),
+    /// the projected point, and the smaller field there with its gradient.
+    fn project(&self, q0: Point, a: usize, b: usize) -> (f64, Point, f64, Point) {
         let cap = 4.0 * self.scene.epsilon;
         let mut q = q0;
         let (mut va, mut ga) = self.eval(a, q);
@@ -429,24 +459,76 @@ impl<'a> Checker<'a> {
             f64::INFINITY
         };
         let (dmin, gmin) = if va <= vb { (va, ga) } else { (vb, gb) };
+        (e_tie, q, dmin, gmin)
+    }
+
+    /// Whether `q` lies in the `medial_axis` region (always true in the other modes).
+    fn in_region(&self, q: Point) -> bool {
+        self.scene.mode != Mode::MedialAxis
+            || self.gens.region.as_ref().is_some_and(|r| r.contains(q))
+    }
+
+    /// The error of edge sample `q0` of the bisector of `a` and `b`, and why.
+    fn sample_error(&self, q0: Point, a: usize, b: usize) -> (f64, &'static str) {
+        let (e_tie, q, dmin, gmin) = if a == b {
+            // two branches of one curve (an arc piece): an arc has a single branch
+            // wherever its distance is differentiable, so the edge can only be its
+            // centre, where a ridge ends
+            let (va, ga) = self.eval(a, q0);
+            let e = self.fields[a]
+                .curvature_center()
+                .map_or(f64::INFINITY, |c| c.dist(q0));
+            (e, q0, va, ga)
+        } else {
+            self.project(q0, a, b)
+        };
         let (e_other, _) = self.intrusion(q, dmin, gmin, &[a, b]);
         let mut e = e_tie.hypot(e_other);
-        let mut why = if e_tie >= e_other {
+        let mut why = if a == b && e_tie >= e_other {
+            "no second branch of the generator nearby"
+        } else if e_tie >= e_other {
             "not on the bisector of its generators"
         } else {
-            "another site is nearer"
+            "another generator is nearer"
         };
         let out = self.scene.domain.outside_distance(q0);
         if out > e {
             (e, why) = (out, "outside the domain");
         }
-        let inside = self
-            .fields
-            .iter()
-            .map(|f| f.inside_depth(q0))
-            .fold(0.0, f64::max);
+        if !self.in_region(q0) {
+            let d = self
+                .gens
+                .region
+                .as_ref()
+                .map_or(f64::INFINITY, |r| r.boundary_distance(q0));
+            if d > e {
+                (e, why) = (d, "outside the medial-axis region");
+            }
+        }
+        let inside = self.near.inside_depth(q0);
         if inside > e {
             (e, why) = (inside, "inside a closed site");
+        }
+        if self.gens.featured {
+            // an edge/piece is an open feature: beyond its end (by more than the
+            // tolerance) the nearest feature is the end corner, not the edge
+            for g in [a, b] {
+                let beyond = self.gens.beyond_end(g, q, self.tiny);
+                if beyond > e {
+                    (e, why) = (
+                        beyond,
+                        "the foot on an edge/piece generator is its end corner (label the corner)",
+                    );
+                }
+            }
+            // a corner and its own edge tie along a zone boundary, which is no Voronoi
+            // edge (harmless right at the corner)
+            if self.gens.zone_boundary(a, b) && self.fields[a].value(q0) > 2.0 * self.tol {
+                return (
+                    f64::INFINITY,
+                    "zone boundary of a corner and its own edge (not a Voronoi edge)",
+                );
+            }
         }
         (e, why)
     }
@@ -487,8 +569,8 @@ impl<'a> Checker<'a> {
             problems.push(format!(
                 "soundness: edge {} (sites {}, {}): {count} bad samples, worst {} ({} eps) at {}: {why}",
                 ge.index,
-                ge.a,
-                ge.b,
+                self.name(ge.a),
+                self.name(ge.b),
                 fmt_g3(e),
                 fmt_g3(e / self.scene.epsilon),
                 at(samples[i].0)
@@ -539,8 +621,9 @@ impl<'a> Checker<'a> {
         (if finite(step) { step } else { Point::default() }, ev)
     }
 
-    /// The error of vertex `v` with generators `gens`, and why.
-    fn vertex_error(&self, v: Point, gens: &[usize]) -> (f64, String) {
+    /// The error of vertex `v` with generators `gens`, of which the curved `twice` are
+    /// listed twice, and why.
+    fn vertex_error(&self, v: Point, gens: &[usize], twice: &[usize]) -> (f64, String) {
         let cap = 4.0 * self.scene.epsilon;
         let mut pos = v;
         for _ in 0..6 {
@@ -567,7 +650,15 @@ impl<'a> Checker<'a> {
         } else {
             0.0
         };
-        let e_tie = pos.dist(v) + spread / (2.0 * gmax).max(1e-12);
+        let mut e_tie = pos.dist(v) + spread / (2.0 * gmax).max(1e-12);
+        // a curve listed twice with a single branch (an arc): the vertex ends a ridge,
+        // so it must be the centre of curvature
+        for &g in twice {
+            let ec = self.fields[g]
+                .curvature_center()
+                .map_or(f64::INFINITY, |c| c.dist(v));
+            e_tie = e_tie.max(ec);
+        }
         let (e_other, who) = self.intrusion(pos, vmin, gmin, gens);
         let e = e_tie.hypot(e_other);
         let out = self.scene.domain.outside_distance(v);
@@ -578,7 +669,7 @@ impl<'a> Checker<'a> {
         } else if who == usize::MAX {
             "inside a closed site".to_string()
         } else {
-            format!("site {who} is nearer")
+            format!("generator {} is nearer", self.name(who))
         };
         (e.max(out), why)
     }
@@ -589,7 +680,7 @@ impl<'a> Checker<'a> {
         let errs = par_map(vs.len(), |k| {
             self.vgens[k]
                 .as_ref()
-                .map(|g| self.vertex_error(vs[k].at, g))
+                .map(|g| self.vertex_error(vs[k].at, g, &self.vtwice[k]))
         });
         let mut bad: Vec<(usize, f64, &str)> = Vec::new();
         let mut ok = 0;
@@ -603,8 +694,14 @@ impl<'a> Checker<'a> {
         bad.sort_by(|x, y| y.1.total_cmp(&x.1));
         for &(k, e, why) in bad.iter().take(MAX_LIST) {
             problems.push(format!(
-                "vertices: vertex {k} (sites {:?}) at {}: error {} ({} eps): {why}",
-                self.vgens[k].as_deref().unwrap_or(&[]),
+                "vertices: vertex {k} (sites [{}]) at {}: error {} ({} eps): {why}",
+                self.vgens[k]
+                    .as_deref()
+                    .unwrap_or(&[])
+                    .iter()
+                    .map(|&g| self.name(g))
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 at(vs[k].at),
                 fmt_g3(e),
                 fmt_g3(e / self.scene.epsilon)
@@ -619,10 +716,12 @@ impl<'a> Checker<'a> {
         ((ok, vs.len()), ok == vs.len())
     }
 
-    /// The crossings of the bisectors between the nearest sites `a` at `qa` and `b` at
-    /// `qb`: bisection of `d_a − d_b` (14 steps); where a third site is nearer at the
-    /// crossing, both halves are searched again (depth ≤ 4). Crossings in ties of
-    /// coincident feet and inside closed sites are skipped.
+    /// The crossings of the bisectors between the nearest generators `a` at `qa` and
+    /// `b` at `qb`: bisection of `d_a − d_b` (14 steps); where a third generator is
+    /// nearer at the crossing, both halves are searched again (depth ≤ 4). An edge or
+    /// piece whose foot at the crossing is its end corner becomes that corner (the
+    /// bisection crossed the corner's zone boundary). Crossings in ties of coincident
+    /// feet, inside closed sites and outside the medial-axis region are skipped.
     fn crossings(
         &self,
         qa: Point,
@@ -643,13 +742,27 @@ impl<'a> Checker<'a> {
             }
         }
         let x = qa.lerp(qb, 0.5 * (lo + hi));
+        let (da, ga) = self.eval(a, x);
+        let (db, gb) = self.eval(b, x);
+        let (a, b) = if self.gens.featured {
+            (
+                self.gens.corner_if_at_end(a, x, self.tiny),
+                self.gens.corner_if_at_end(b, x, self.tiny),
+            )
+        } else {
+            (a, b)
+        };
+        // after the relabelling, a corner and its own edge: the crossing lies on that
+        // corner's zone boundary, which is no Voronoi edge (the Python checker keeps
+        // these; they arise where a corner's wedge is narrower than the grid)
+        if self.gens.featured && self.gens.zone_boundary(a, b) {
+            return;
+        }
         let Some(hit) = self.near.at(x) else {
             return;
         };
-        let (da, ga) = self.eval(a, x);
-        let (db, gb) = self.eval(b, x);
         let (dmin, gmin) = if da <= db { (da, ga) } else { (db, gb) };
-        let k = hit.site;
+        let k = hit.gen;
         if k != a && k != b && depth < 4 {
             let (_, gk) = self.eval(k, x);
             if (dmin - hit.value) / (gmin - gk).norm().max(1e-12) > 1e-9 * self.scale {
@@ -662,7 +775,7 @@ impl<'a> Checker<'a> {
             (Some(fa), Some(fb)) => fa.dist(fb) <= 1e-7 * self.scale,
             _ => false,
         };
-        if !tie {
+        if !tie && self.in_region(x) {
             out.push((x, a, b));
         }
     }
@@ -679,7 +792,14 @@ impl<'a> Checker<'a> {
                 dom.min.y + (j as f64 + 0.5) * hy,
             )
         };
-        let labels = par_map(n * n, |k| self.near.at(node(k % n, k / n)).map(|h| h.site));
+        let labels = par_map(n * n, |k| {
+            let q = node(k % n, k / n);
+            if self.in_region(q) {
+                self.near.at(q).map(|h| h.gen)
+            } else {
+                None
+            }
+        });
         let mut pairs = Vec::new();
         for j in 0..n {
             for i in 0..n {
@@ -687,7 +807,7 @@ impl<'a> Checker<'a> {
                 for (di, dj) in [(1, 0), (0, 1)] {
                     if i + di < n && j + dj < n {
                         if let Some(b) = labels[(j + dj) * n + i + di] {
-                            if a != b {
+                            if a != b && !self.gens.zone_boundary(a, b) {
                                 pairs.push((node(i, j), node(i + di, j + dj), a, b));
                             }
                         }
@@ -743,7 +863,9 @@ impl<'a> Checker<'a> {
         miss.sort_by_key(|m| std::cmp::Reverse(m.1 .0));
         for &((a, b), (count, x)) in miss.iter().take(MAX_LIST) {
             problems.push(format!(
-                "completeness: no edge between sites {a} and {b} near {} ({count} crossings uncovered)",
+                "completeness: no edge between sites {} and {} near {} ({count} crossings uncovered)",
+                self.name(a),
+                self.name(b),
                 at(x)
             ));
         }
@@ -803,7 +925,8 @@ impl<'a> Checker<'a> {
                         if let (Some(g), Some(vg)) = (gens, &self.vgens[v]) {
                             for s in g.iter().filter(|s| !vg.contains(s)) {
                                 errors.push(format!(
-                                    "edge {k}: vertex {v} ('{name}') does not list its generator {s}"
+                                    "edge {k}: vertex {v} ('{name}') does not list its generator {}",
+                                    self.name(*s)
                                 ));
                             }
                         }
@@ -820,8 +943,8 @@ impl<'a> Checker<'a> {
                         }
                         let on_site = self
                             .near
-                            .at(p)
-                            .is_none_or(|h| self.fields[h.site].distance_to_site(p) <= self.tol);
+                            .at_unmasked(p)
+                            .is_none_or(|h| self.fields[h.gen].distance_to_site(p) <= self.tol);
                         if on_site {
                             warnings.push(format!(
                                 "edge {k}: null '{name}' end {} ends on a site, not on the domain boundary",

@@ -1,22 +1,25 @@
-//! The nearest site to a point, exactly (brute force over a certified candidate set).
+//! The nearest generator to a point, exactly (brute force over a certified candidate
+//! set).
 //!
-//! Every site with a radial lower bound `field(q) ≥ lower(|q − anchor|)` is bucketed by
+//! Every generator with a radial lower bound `field(q) ≥ lower(|q − anchor|)` is bucketed by
 //! its anchor in a uniform grid of cell size `c`. The search scans rings of cells around
 //! the query; after ring `k` every unscanned anchor is farther than `k·c`, so no
 //! unscanned site can beat `G(k·c) = min_i lower_i(k·c)` (precomputed for every `k`), and
 //! the search stops as soon as `G(k·c) ≥ best`. Sites without a bound are always
-//! evaluated.
+//! evaluated. Points inside a masked closed site have no nearest generator; where the
+//! foot on the nearest edge/piece is an end corner, the hit names the corner.
 
-use super::field::{Bound, Field};
+use super::field::Bound;
+use super::generators::{Gens, Mask};
 use crate::geom::{Aabb, Point};
 
 /// The nearest-site index of a scene.
 pub(super) struct Nearest<'a> {
-    fields: &'a [Field],
-    /// sites evaluated for every query
+    gens: &'a Gens,
+    /// generators evaluated for every query
     always: Vec<usize>,
-    /// closed sites (their insides belong to no cell)
-    closed: Vec<usize>,
+    /// `1e-12` of the scene's size: feet closer than this to an end are at the end
+    tiny: f64,
     origin: Point,
     cell: f64,
     nx: usize,
@@ -28,23 +31,19 @@ pub(super) struct Nearest<'a> {
     ring_bound: Vec<f64>,
 }
 
-/// The result of a query: the nearest site and its field value.
+/// The result of a query: the nearest generator and its field value.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Hit {
-    pub site: usize,
+    pub gen: usize,
     pub value: f64,
 }
 
 impl<'a> Nearest<'a> {
-    pub(super) fn new(fields: &'a [Field], domain: Aabb) -> Self {
+    pub(super) fn new(gens: &'a Gens, domain: Aabb) -> Self {
         let mut always = Vec::new();
         let mut anchored = Vec::new();
-        let mut closed = Vec::new();
         let (mut lo, mut hi) = (domain.min, domain.max);
-        for (i, f) in fields.iter().enumerate() {
-            if matches!(f, Field::Ellipse { .. }) {
-                closed.push(i);
-            }
+        for (i, f) in gens.fields.iter().enumerate() {
             match f.bound() {
                 (_, Bound::None) => always.push(i),
                 (p, b) => {
@@ -89,9 +88,9 @@ impl<'a> Nearest<'a> {
             })
             .collect();
         Nearest {
-            fields,
+            gens,
             always,
-            closed,
+            tiny: 1e-12 * domain.longest_side(),
             origin: lo,
             cell,
             nx,
@@ -102,19 +101,46 @@ impl<'a> Nearest<'a> {
         }
     }
 
-    /// The nearest site at `q`, or `None` inside a closed site (or with no sites).
+    /// How deep `q` lies inside a masked closed site (0 outside all of them).
+    pub(super) fn inside_depth(&self, q: Point) -> f64 {
+        self.gens
+            .masks
+            .iter()
+            .map(|m| match m {
+                Mask::Ellipse { gen } => self.gens.fields[*gen].inside_depth(q),
+                Mask::Polygon { region } => region.depth(q),
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// Whether `q` lies inside a masked closed site.
+    pub(super) fn masked(&self, q: Point) -> bool {
+        self.gens.masks.iter().any(|m| match m {
+            Mask::Ellipse { gen } => self.gens.fields[*gen].inside(q),
+            Mask::Polygon { region } => region.contains(q),
+        })
+    }
+
+    /// The nearest generator at `q`, or `None` inside a closed site (or with no
+    /// generators).
     pub(super) fn at(&self, q: Point) -> Option<Hit> {
-        if self.closed.iter().any(|&i| self.fields[i].inside(q)) {
+        if self.masked(q) {
             return None;
         }
+        self.at_unmasked(q)
+    }
+
+    /// The nearest generator at `q`, inside closed sites too.
+    pub(super) fn at_unmasked(&self, q: Point) -> Option<Hit> {
+        let fields = &self.gens.fields;
         let mut best = Hit {
-            site: usize::MAX,
+            gen: usize::MAX,
             value: f64::INFINITY,
         };
         let consider = |i: usize, best: &mut Hit| {
-            let v = self.fields[i].value(q);
-            if v < best.value || (v == best.value && i < best.site) {
-                *best = Hit { site: i, value: v };
+            let v = fields[i].value(q);
+            if v < best.value || (v == best.value && i < best.gen) {
+                *best = Hit { gen: i, value: v };
             }
         };
         for &i in &self.always {
@@ -151,6 +177,10 @@ impl<'a> Nearest<'a> {
                 break;
             }
         }
-        (best.site != usize::MAX).then_some(best)
+        if best.gen == usize::MAX {
+            return None;
+        }
+        best.gen = self.gens.end_corner(best.gen, q, self.tiny);
+        Some(best)
     }
 }

@@ -321,19 +321,31 @@ fn implicit_field_and_segments() {
 
 #[test]
 fn unsupported_kinds_and_modes_are_refused() {
-    let mut s = scene(vec![SiteKind::Polyline {
-        points: vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)],
+    let mut s = scene(vec![SiteKind::Bezier {
+        control_points: vec![
+            Point::new(0.0, 0.0),
+            Point::new(0.5, 0.5),
+            Point::new(1.0, 0.0),
+        ],
+        weights: None,
     }]);
     let d = VoronoiComplex::default();
     assert!(matches!(
         verify(&s, &d, &VerifyOptions::default()),
         Err(Error::Unsupported { site: 0, .. })
     ));
-    s.mode = Mode::Complex;
+    s.sites[0].kind = SiteKind::Ellipse {
+        center: Point::default(),
+        semi_axes: [0.5, 0.25],
+        rotation: 0.0,
+    };
+    s.mode = Mode::MedialAxis;
     assert!(matches!(
         verify(&s, &d, &VerifyOptions::default()),
-        Err(Error::Scene { .. })
+        Err(Error::Unsupported { site: 0, .. })
     ));
+    s.mode = Mode::Complex;
+    assert!(verify(&s, &d, &VerifyOptions::default()).is_ok());
 }
 
 #[test]

@@ -337,6 +337,133 @@ fn structure(s: &Scene, d: &VoronoiComplex) -> Result<(), String> {
     Ok(())
 }
 
+// ---------------------------------------------------------------- completeness
+
+/// Where a corner generator is (for matching corners at one place).
+fn corner_at(s: &Scene, g: &Generator) -> Option<Point> {
+    match *g {
+        Generator::Feature {
+            site,
+            feature: FeatureKind::Corner,
+            index,
+        } => Some(features(&s.sites[site].kind).0[index]),
+        _ => None,
+    }
+}
+
+/// Two labels for one generator: equal, or corners at the same place (where sites
+/// share an end, the engine names the point by one of them).
+fn same_gen(s: &Scene, a: &Generator, b: &Generator) -> bool {
+    a == b || matches!((corner_at(s, a), corner_at(s, b)), (Some(p), Some(q)) if p == q)
+}
+
+/// Whether `c` is a corner at an end of the edge or piece `e` (of any site): their
+/// common boundary is a separator, which the diagram leaves out.
+fn separator(s: &Scene, c: &Generator, e: &Generator) -> bool {
+    let Some(p) = corner_at(s, c) else {
+        return false;
+    };
+    match *e {
+        Generator::Feature { site, feature, .. } if feature != FeatureKind::Corner => {
+            let (pts, _) = features(&s.sites[site].kind);
+            // Segments and arcs only here: their ends are corners 0 and 1.
+            pts.contains(&p)
+        }
+        _ => false,
+    }
+}
+
+/// A brute-force completeness check on an `n×n` grid of the domain: wherever two
+/// neighbouring grid points have different nearest generators A and B, with a clear
+/// margin (no tie, no third generator close to the midpoint) and not a separator pair,
+/// an edge labelled {A, B} must pass within `h + 2·epsilon` of their midpoint.
+fn missing_edge(s: &Scene, d: &VoronoiComplex, n: usize) -> Option<String> {
+    let all = generators(s);
+    let dom = s.domain;
+    let h = (dom.max.x - dom.min.x) / n as f64;
+    let best = |q: Point| {
+        let mut ds: Vec<(f64, usize)> = all
+            .iter()
+            .enumerate()
+            .map(|(k, g)| (dist(s, g, q), k))
+            .collect();
+        ds.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        ds
+    };
+    let margin = 1e-9;
+    let reach = h + 2.0 * s.epsilon;
+    let near_edge = |m: Point, a: &Generator, b: &Generator| {
+        d.edges.iter().any(|e| {
+            let labelled = (same_gen(s, &e.sites[0], a) && same_gen(s, &e.sites[1], b))
+                || (same_gen(s, &e.sites[0], b) && same_gen(s, &e.sites[1], a));
+            labelled
+                && e.points
+                    .windows(2)
+                    .any(|w| seg_dist(m, w[0], w[1]) <= reach)
+        })
+    };
+    let grid: Vec<Vec<Vec<(f64, usize)>>> = (0..=n)
+        .map(|i| {
+            (0..=n)
+                .map(|j| {
+                    best(Point::new(
+                        dom.min.x + (i as f64 + 0.5) * h,
+                        dom.min.y + (j as f64 + 0.5) * h,
+                    ))
+                })
+                .collect()
+        })
+        .collect();
+    for i in 0..n {
+        for j in 0..n {
+            for (i2, j2) in [(i + 1, j), (i, j + 1)] {
+                if i2 >= n || j2 >= n {
+                    continue;
+                }
+                let (p, q) = (&grid[i][j], &grid[i2][j2]);
+                let (a, b) = (&all[p[0].1], &all[q[0].1]);
+                if same_gen(s, a, b) || p[1].0 - p[0].0 < margin || q[1].0 - q[0].0 < margin {
+                    continue;
+                }
+                if separator(s, a, b) || separator(s, b, a) {
+                    continue;
+                }
+                let pp = Point::new(
+                    dom.min.x + (i as f64 + 0.5) * h,
+                    dom.min.y + (j as f64 + 0.5) * h,
+                );
+                let qq = Point::new(
+                    dom.min.x + (i2 as f64 + 0.5) * h,
+                    dom.min.y + (j2 as f64 + 0.5) * h,
+                );
+                let m = pp.lerp(qq, 0.5);
+                let (da, db) = (dist(s, a, m), dist(s, b, m));
+                // A tie region (two sites sharing an end, at an angle) between the two
+                // grid points: the cells meet over a two-dimensional set, not an edge.
+                // Two tied neighbouring sub-samples, so that a tie along a line (the
+                // edge itself) does not count.
+                let tied = |k: usize| {
+                    let x = pp.lerp(qq, k as f64 / 64.0);
+                    (dist(s, a, x) - dist(s, b, x)).abs() <= 1e-12
+                };
+                let tie = (0..64).any(|k| tied(k) && tied(k + 1));
+                let third = all
+                    .iter()
+                    .filter(|g| !same_gen(s, g, a) && !same_gen(s, g, b))
+                    .any(|g| dist(s, g, m) < da.min(db) + h);
+                if tie || third || near_edge(m, a, b) {
+                    continue;
+                }
+                return Some(format!(
+                    "no edge {a:?} / {b:?} near ({}, {}) (between grid points ({}, {}) and ({}, {}))",
+                    m.x, m.y, pp.x, pp.y, qq.x, qq.y
+                ));
+            }
+        }
+    }
+    None
+}
+
 fn scene_json(mode: &str, sites: Vec<Value>) -> Value {
     json!({
         "domain": [-2, -2, 2, 2],
@@ -360,6 +487,16 @@ fn incremental(s: &Scene) -> Result<VoronoiComplex, Error> {
 
 /// Every check of the module doc on one scene; the scene's JSON is in the message.
 fn check_value(v: &Value) -> Result<(), String> {
+    check_with(v, true)
+}
+
+/// Soundness and structure only (for the scenes with tangent joints, whose missing
+/// edges are a known failure: see `failing_tangent_joint_edges`).
+fn check_sound(v: &Value) -> Result<(), String> {
+    check_with(v, false)
+}
+
+fn check_with(v: &Value, completeness: bool) -> Result<(), String> {
     let s = scene_of(v);
     let ctx = || serde_json::to_string(v).unwrap();
     let d = incremental(&s).map_err(|e| format!("refused: {e} (scene {})", ctx()))?;
@@ -373,6 +510,9 @@ fn check_value(v: &Value) -> Result<(), String> {
             "brute force: error {err} eps, {at} (scene {})",
             ctx()
         ));
+    }
+    if let Some(m) = missing_edge(&s, &d, 64).filter(|_| completeness) {
+        return Err(format!("completeness: {m} (scene {})", ctx()));
     }
     Ok(())
 }
@@ -484,7 +624,7 @@ fn rounded_rect_scene(
         arc((c.0 + dx, c.1 + dy), rho, 0.0, FRAC_PI_2),
         arc((c.0 - dx, c.1 + dy), rho, FRAC_PI_2, PI),
         arc((c.0 - dx, c.1 - dy), rho, PI, 1.5 * PI),
-        arc((c.0 + dx, c.1 - dy), rho, 1.5 * PI, TAU),
+        arc((c.0 + dx, c.1 - dy), rho, -FRAC_PI_2, 0.0),
     ];
     let mut sites: Vec<Value> = arcs.iter().map(ArcG::json).collect();
     for k in 0..4 {
@@ -749,12 +889,16 @@ fn fixed_scenes() -> Vec<(&'static str, Value)> {
 }
 
 fn check_fixed(prefix: &str) {
+    check_fixed_with(prefix, check_value)
+}
+
+fn check_fixed_with(prefix: &str, check: fn(&Value) -> Result<(), String>) {
     let mut failures = Vec::new();
     let mut n = 0;
     for (name, v) in fixed_scenes() {
         if name.starts_with(prefix) {
             n += 1;
-            if let Err(e) = check_value(&v) {
+            if let Err(e) = check(&v) {
                 failures.push(format!("{name}: {e}"));
             }
         }
@@ -812,12 +956,12 @@ fn d_shapes() {
 
 #[test]
 fn rounded_rectangles() {
-    check_fixed("rounded-rect");
+    check_fixed_with("rounded-rect", check_sound);
 }
 
 #[test]
 fn stadium() {
-    check_fixed("stadium-");
+    check_fixed_with("stadium-", check_sound);
 }
 
 #[test]
@@ -1134,21 +1278,16 @@ fn point_on_arc_conflict() {
     assert_conflict(vec![point(-1.9, -1.9), point(q.x, q.y), a.json()], (1, 2));
 }
 
-/// Not conflicts: arcs sharing an end (bit for bit), a segment from an arc's end, a
-/// point at an arc's end; they compute and pass the checks.
+/// Not conflicts: a segment from an arc's end (bit for bit), a point at an arc's end;
+/// they compute and pass the checks.
 #[test]
 fn shared_ends_are_not_conflicts() {
     let a = arc((0.0, 0.0), 1.0, 0.0, 2.0);
-    let b = ArcG {
-        c: a.end(1) * 2.0,
-        r: 1.0,
-        start: 2.0 + PI,
-        span: 2.0,
-    };
-    assert!(b.end(0).dist(a.end(1)) < 1e-15);
     let e = a.end(1);
     for mode in ["voronoi", "complex"] {
-        let v = scene_json(
+        // Guarded: bare, the edge between the arc and the segment outside the circle
+        // is missing (failing/arc-segment-angled-joint.json).
+        let v = guarded(scene_json(
             mode,
             vec![
                 a.json(),
@@ -1156,7 +1295,7 @@ fn shared_ends_are_not_conflicts() {
                 point(e.x, e.y),
                 point(-1.5, -1.5),
             ],
-        );
+        ));
         check_value(&v).unwrap();
     }
 }
@@ -1328,7 +1467,7 @@ proptest! {
     ) {
         let rho = f * w.min(h);
         let v = rounded_rect_scene(mode, (cx, cy), w, h, rho, &extra);
-        prop_assert!(check_value(&v).is_ok(), "{}", check_value(&v).unwrap_err());
+        prop_assert!(check_sound(&v).is_ok(), "{}", check_sound(&v).unwrap_err());
     }
 
     /// A segment through an inner point of an arc, transverse to it, is a conflict
@@ -1383,6 +1522,9 @@ fn known_failures_still_fail_and_pass_guarded() {
         "concentric-two-arcs",
         "tiny-arc-span-6.27",
         "two-arcs-span-5",
+        "arc-tangent-segment",
+        "two-arcs-tangent-joint",
+        "arc-segment-angled-joint",
     ] {
         let v = failing(name);
         assert!(
@@ -1390,11 +1532,8 @@ fn known_failures_still_fail_and_pass_guarded() {
             "{name} passes now: un-ignore its test"
         );
         let g = check_value(&guarded(v));
-        assert_eq!(
-            g.is_err(),
-            name.starts_with("d-shape"),
-            "{name} guarded: {g:?}"
-        );
+        let guarded_fails = name.starts_with("d-shape") || name.contains("tangent");
+        assert_eq!(g.is_err(), guarded_fails, "{name} guarded: {g:?}");
     }
 }
 
@@ -1450,6 +1589,35 @@ fn failing_tiny_arc_big_span() {
 #[ignore = "known failure: two arcs (spans π and 5.2): edge off by 0.066 (checker) at (-0.0157, -2)"]
 fn failing_two_arcs_big_span() {
     check_failing("two-arcs-span-5");
+}
+
+/// Tangent (G1) joints between separate sites: the common normal at the joint is an
+/// edge between their cells (a line, not a tie region as at an angled joint), but the
+/// engine leaves it out as two separators.
+#[test]
+#[ignore = "known failure: no edge along the common normal of a tangent joint: arc [0, π/2] r 1 and segment (1, 0)-(1, -1), missing edge Site(0)/Site(1) on y = 0"]
+fn failing_arc_tangent_segment() {
+    check_failing("arc-tangent-segment");
+}
+
+#[test]
+#[ignore = "known failure: no edge along the common normal of a tangent joint: arcs [π/2, π] and [π, 3π/2] of one circle, missing edge Site(0)/Site(1) on y = 0"]
+fn failing_two_arcs_tangent_joint() {
+    check_failing("two-arcs-tangent-joint");
+}
+
+#[test]
+#[ignore = "known failure: unbounded arc cells: arc [0, 2] r 1 and a segment from its start (1, 0) to (1.5, -1): no edge between them outside the circle, e.g. near (1.033, 0.008)"]
+fn failing_arc_segment_angled_joint() {
+    check_failing("arc-segment-angled-joint");
+}
+
+/// The rounded rectangles and stadiums with the completeness check.
+#[test]
+#[ignore = "known failure: no edges along the common normals of the tangent joints (failing/arc-tangent-segment.json, failing/two-arcs-tangent-joint.json)"]
+fn tangent_joints_complete() {
+    check_fixed("rounded-rect");
+    check_fixed("stadium-");
 }
 
 /// A closed loop (both ends null) must repeat its first point last (SCENE_FORMAT.md):
@@ -1526,4 +1694,42 @@ fn dump_scenes() {
         )
         .unwrap();
     }
+}
+
+/// A scene file whose segments share ends with arcs bit for bit (as written by Python's
+/// or serde_json's shortest round-trip printing) must read back the same numbers;
+/// serde_json without its `float_roundtrip` feature reads some of them 1 ulp off, and the
+/// segment then touches the arc away from a shared end: `Error::Conflict`.
+#[test]
+#[ignore = "known failure: the scene reader misreads some numbers by 1 ulp (serde_json without float_roundtrip): rounded-rect-points-json-read.json is refused, sites 1 and 5 conflict"]
+fn shared_ends_survive_reading_the_file() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/scenes/arcs/failing/rounded-rect-points-json-read.json");
+    let text = std::fs::read_to_string(path).unwrap();
+    let s = Scene::from_json(&text).unwrap();
+    let d = incremental(&s);
+    assert!(d.is_ok(), "{:?}", d.err());
+}
+
+/// What `shared_ends_survive_reading_the_file` is about: numbers of the file read by
+/// serde_json against Rust's correctly rounded `str::parse` (reported, not asserted).
+#[test]
+fn json_numbers_read_exactly_report() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/scenes/arcs/failing/rounded-rect-points-json-read.json");
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut off = 0;
+    for tok in
+        text.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-' || c == 'e' || c == 'E'))
+    {
+        if tok.len() > 8 {
+            let exact: f64 = tok.parse().unwrap();
+            let sj: f64 = serde_json::from_str(tok).unwrap();
+            if exact != sj {
+                off += 1;
+                println!("{tok}: serde_json reads {sj:?}, exact {exact:?}");
+            }
+        }
+    }
+    println!("{off} numbers misread");
 }

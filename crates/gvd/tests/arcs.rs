@@ -28,10 +28,12 @@
 //!
 //! Known failures (scenes under `tests/data/scenes/arcs/failing/`, tests marked
 //! `#[ignore]`): the half circle closed by its diameter (the edge is drawn along the
-//! segment), and scenes where an arc's cell reaches the domain's boundary with no other
-//! site beyond it (two-site scenes: an arc and a point inside or outside its circle,
-//! two arcs); the same scenes pass with four guard points near the domain's corners, so
-//! the random families run both bare (ignored) and guarded.
+//! segment: both ends of that edge are on the sites, so the conic's branch is not
+//! decided), tangent (G1) joints (the joint's face has zero area and the edge along
+//! the common normal is missing), and one arc with a point deep inside its circle.
+//! Scenes where an arc's cell reached the far generators (two-site scenes) once failed
+//! too; they pass since the segment engine adds a frame of auxiliary points, and the
+//! random families run both bare and with four guard points near the domain corners.
 //!
 //! Conflicts (an arc crossing a segment or another arc, arcs overlapping on one circle,
 //! tangent arcs, a point on an arc) must be refused with `Error::Conflict` naming both
@@ -926,7 +928,6 @@ fn two_arcs() {
 }
 
 #[test]
-#[ignore = "known failure: unbounded arc cells: an arc with nothing beyond it (failing/arc-span-4-point-inside.json, failing/arc-span-6-point-in-gap.json); passes guarded (guarded_big_spans)"]
 fn big_spans() {
     check_fixed("big-span");
 }
@@ -988,7 +989,6 @@ fn short_spans_disjoint_fixed() {
 }
 
 #[test]
-#[ignore = "known failure: unbounded arc cells: an arc with nothing beyond it (failing/arc-span-5-point-in-gap.json); passes guarded (guarded_random_disjoint_fixed)"]
 fn random_disjoint_fixed() {
     check_fixed("random-disjoint-");
 }
@@ -1401,7 +1401,6 @@ proptest! {
     }
 
     #[test]
-    #[ignore = "known failure: unbounded arc cells: an arc with nothing beyond it (failing/arc-span-5-point-in-gap.json)"]
     fn random_disjoint_arcs_and_points(
         mode in mode(),
         arcs in prop::collection::vec((-1.5f64..1.5, -1.5f64..1.5, 0.05f64..1.2, 0.0f64..TAU, 0.05f64..(TAU - 0.01)), 1..8),
@@ -1412,7 +1411,6 @@ proptest! {
     }
 
     #[test]
-    #[ignore = "known failure: unbounded arc cells: an arc with nothing beyond it (failing/two-arcs-span-5.json)"]
     fn big_span_arcs(
         mode in mode(),
         arcs in prop::collection::vec((-1.0f64..1.0, -1.0f64..1.0, 0.1f64..1.0, 0.0f64..TAU, PI..(TAU - 0.01)), 1..4),
@@ -1424,7 +1422,6 @@ proptest! {
 
     /// Tiny radii with spans up to 2π − 0.01.
     #[test]
-    #[ignore = "known failure: unbounded arc cells: an arc with nothing beyond it (failing/tiny-arc-span-6.27.json)"]
     fn tiny_radii_big_spans(
         mode in mode(),
         mx in -1.0f64..1.0, my in -1.0f64..1.0, theta in 0.0f64..TAU,
@@ -1438,7 +1435,6 @@ proptest! {
     }
 
     #[test]
-    #[ignore = "known failure: unbounded arc cells: an arc with nothing beyond it (failing/concentric-two-arcs.json)"]
     fn concentric(
         mode in mode(),
         cx in -0.3f64..0.3, cy in -0.3f64..0.3,
@@ -1452,7 +1448,6 @@ proptest! {
     }
 
     #[test]
-    #[ignore = "known failure: unbounded arc cells: an arc with nothing beyond it (failing/arc-span-1.5-point-inside-near.json, failing/arc-span-2.5-point-inside-deep.json)"]
     fn arc_and_point_inside_circle(
         mode in mode(),
         r in 0.2f64..1.5, a0 in 0.0f64..TAU, span in 0.1f64..(TAU - 0.01),
@@ -1530,17 +1525,9 @@ fn check_failing(name: &str) {
 fn known_failures_still_fail_and_pass_guarded() {
     for name in [
         "d-shape-half-circle-diameter",
-        "arc-span-1.5-point-inside-near",
         "arc-span-2.5-point-inside-deep",
-        "arc-span-4-point-inside",
-        "arc-span-5-point-in-gap",
-        "arc-span-6-point-in-gap",
-        "concentric-two-arcs",
-        "tiny-arc-span-6.27",
-        "two-arcs-span-5",
         "arc-tangent-segment",
         "two-arcs-tangent-joint",
-        "arc-segment-angled-joint",
     ] {
         let v = failing(name);
         assert!(
@@ -1560,7 +1547,6 @@ fn failing_d_shape() {
 }
 
 #[test]
-#[ignore = "known failure: arc [0, 1.5] r 1 with a point at (0.8, 0.43) inside its circle: arc/point edge off by up to 4.28 (checker) at (2, 1.163)"]
 fn failing_arc_point_inside_near() {
     check_failing("arc-span-1.5-point-inside-near");
 }
@@ -1572,37 +1558,31 @@ fn failing_arc_point_inside_deep() {
 }
 
 #[test]
-#[ignore = "known failure: arc [0, 4] r 1 with a point at (-0.2, 0.1): arc/point edge off by 112 (checker) at (-2, 1.169)"]
 fn failing_arc_span_4_point_inside() {
     check_failing("arc-span-4-point-inside");
 }
 
 #[test]
-#[ignore = "known failure: arc [0, 5.04] r 0.697 with a point at (0.803, 0) in its gap: edge off by 0.158 (checker) at (1.737, 0.574)"]
 fn failing_arc_span_5_point_in_gap() {
     check_failing("arc-span-5-point-in-gap");
 }
 
 #[test]
-#[ignore = "known failure: arc [0, 6] r 1 with a point at (1.5, 0) in its gap: edge off by 0.981 (checker) at (1.25, 2)"]
 fn failing_arc_span_6_point_in_gap() {
     check_failing("arc-span-6-point-in-gap");
 }
 
 #[test]
-#[ignore = "known failure: two concentric arcs (spans 0.1 and 1.99): edge off at (1.118, 0.645) by 114 eps (brute force)"]
 fn failing_concentric_two_arcs() {
     check_failing("concentric-two-arcs");
 }
 
 #[test]
-#[ignore = "known failure: arc r 0.01 spanning 2π − 0.01 and a point: edge 3.92 eps off (checker) at (-0.4575, -2)"]
 fn failing_tiny_arc_big_span() {
     check_failing("tiny-arc-span-6.27");
 }
 
 #[test]
-#[ignore = "known failure: two arcs (spans π and 5.2): edge off by 0.066 (checker) at (-0.0157, -2)"]
 fn failing_two_arcs_big_span() {
     check_failing("two-arcs-span-5");
 }
@@ -1623,7 +1603,6 @@ fn failing_two_arcs_tangent_joint() {
 }
 
 #[test]
-#[ignore = "known failure: unbounded arc cells: arc [0, 2] r 1 and a segment from its start (1, 0) to (1.5, -1): no edge between them outside the circle, e.g. near (1.033, 0.008)"]
 fn failing_arc_segment_angled_joint() {
     check_failing("arc-segment-angled-joint");
 }
@@ -1640,7 +1619,6 @@ fn tangent_joints_complete() {
 /// checked bit for bit here. (The scene, unguarded, also fails the brute force: edge
 /// Site(2)/Site(4) 4.29 eps off at (1.297, -2), the unbounded-arc-cell failure.)
 #[test]
-#[ignore = "known failure: the loop of point 5 around arc 0 ends 2.8e-17 from its first point (0.10887269025361745, -0.23789116822467796)"]
 fn closed_loops_repeat_their_first_point() {
     let v = failing("closed-loop-last-point-not-first");
     let d = incremental(&scene_of(&v)).unwrap();
@@ -1718,7 +1696,6 @@ fn dump_scenes() {
 /// serde_json without its `float_roundtrip` feature reads some of them 1 ulp off, and the
 /// segment then touches the arc away from a shared end: `Error::Conflict`.
 #[test]
-#[ignore = "known failure: the scene reader misreads some numbers by 1 ulp (serde_json without float_roundtrip): rounded-rect-points-json-read.json is refused, sites 1 and 5 conflict"]
 fn shared_ends_survive_reading_the_file() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/scenes/arcs/failing/rounded-rect-points-json-read.json");

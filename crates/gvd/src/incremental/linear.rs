@@ -264,7 +264,10 @@ impl Snap {
     }
 
     fn cell(&self, p: Point) -> (i64, i64) {
-        ((p.x / self.tol).floor() as i64, (p.y / self.tol).floor() as i64)
+        (
+            (p.x / self.tol).floor() as i64,
+            (p.y / self.tol).floor() as i64,
+        )
     }
 
     fn insert(&mut self, p: Point, id: u32) {

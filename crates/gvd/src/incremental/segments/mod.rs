@@ -72,14 +72,18 @@ impl SegmentDiagram {
         arcs: &[ArcSpec],
         domain: Aabb,
     ) -> Result<SegmentDiagram, Error> {
-        let pd = PointDiagram::new(points, domain)?;
-        let mut graph = Graph::from_points(&pd);
         let n = points.len();
-        let mut face_of_point = vec![0u32; n];
+        let mut with_frame = points.to_vec();
+        with_frame.extend(frame(points, arcs, domain));
+        let pd = PointDiagram::new(&with_frame, domain)?;
+        let mut graph = Graph::from_points(&pd);
+        let mut face_of_point = vec![0u32; with_frame.len()];
         let mut point_id = vec![u32::MAX; pd.pts.len()];
         for (s, &i) in pd.input.iter().enumerate() {
             face_of_point[i as usize] = s as u32;
-            point_id[s] = i;
+            if (i as usize) < n {
+                point_id[s] = i;
+            }
         }
         let lines: Vec<Line> = segments
             .iter()
@@ -228,6 +232,28 @@ impl SegmentDiagram {
         }
         (vertices, edges)
     }
+}
+
+/// Eight auxiliary point generators on a circle four times the extent of the domain,
+/// the points and the arcs' circles, around their centre: no domain point is nearer to
+/// them than to a site, and the Voronoi vertices of the sites near the domain are then
+/// never next to the far generators of the point diagram (whose vertices `T` must keep
+/// out), even with few sites and an arc whose region wraps around most of the plane.
+/// Their faces and edges are not output.
+fn frame(points: &[Point], arcs: &[ArcSpec], domain: Aabb) -> [Point; 8] {
+    let (mut lo, mut hi) = (domain.min, domain.max);
+    let mut grow = |p: Point, r: f64| {
+        lo = Point::new(lo.x.min(p.x - r), lo.y.min(p.y - r));
+        hi = Point::new(hi.x.max(p.x + r), hi.y.max(p.y + r));
+    };
+    points.iter().for_each(|&p| grow(p, 0.0));
+    arcs.iter().for_each(|a| grow(a.c, a.r));
+    let c = lo.lerp(hi, 0.5);
+    let r = 4.0 * (hi - lo).norm().max(f64::MIN_POSITIVE);
+    std::array::from_fn(|k| {
+        let a = std::f64::consts::TAU * k as f64 / 8.0;
+        c + Point::new(a.cos(), a.sin()) * r
+    })
 }
 
 /// A fixed pseudo-random permutation of `0..n` (insertion in random order keeps the

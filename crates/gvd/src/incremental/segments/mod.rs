@@ -106,7 +106,7 @@ impl SegmentDiagram {
             .collect();
         let mut faces_at_point: Vec<Vec<u32>> = vec![Vec::new(); pd.pts.len()];
         let mut scratch = Scratch::default();
-        for k in insertion_order(segments.len() + arcs.len()) {
+        for k in insertion_order(&lines, &arc_gens) {
             let sites = Sites {
                 points: &pd.pts,
                 lines: &lines,
@@ -230,17 +230,22 @@ impl SegmentDiagram {
     }
 }
 
-/// A fixed pseudo-random permutation of `0..n` (insertion in random order keeps the
-/// expected conflict trees small).
-fn insertion_order(n: usize) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..n).collect();
-    let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
-    for i in (1..n).rev() {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        let j = ((s >> 33) % (i as u64 + 1)) as usize;
-        order.swap(i, j);
-    }
-    order
+/// The insertion order of the segments (indices `0..lines.len()`) and arcs (indices
+/// after them): a biased randomized insertion order along a Hilbert curve of their
+/// middles (`order.rs`). Random rounds keep the expected conflict trees small, as a
+/// random order does; consecutive sites within a round are neighbours, so each
+/// insertion finds the graph around it still in cache.
+fn insertion_order(lines: &[Line], arcs: &[Arc]) -> Vec<usize> {
+    let middles: Vec<Point> = lines
+        .iter()
+        .map(|l| l.a + l.d * (0.5 * l.len))
+        .chain(arcs.iter().map(|a| {
+            let mid = a.a0 + 0.5 * a.span;
+            a.c + Point::new(mid.cos(), mid.sin()) * a.r
+        }))
+        .collect();
+    super::order::brio(&middles)
+        .into_iter()
+        .map(|k| k as usize)
+        .collect()
 }

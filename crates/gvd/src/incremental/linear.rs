@@ -312,6 +312,111 @@ fn find(parent: &mut [usize], mut v: usize) -> usize {
     v
 }
 
+/// A raw edge kept for the output, its ends merged across zero-length edges.
+struct Kept {
+    sites: [Generator; 2],
+    ends: [usize; 2],
+    points: Vec<Point>,
+}
+
+/// The kept edges around each vertex, in the order of the edges (an edge from a
+/// vertex to itself twice), as one flat list.
+struct Incident {
+    /// Vertex `v`'s edges are `edges[start[v]..start[v + 1]]`.
+    start: Vec<usize>,
+    edges: Vec<usize>,
+}
+
+impl Incident {
+    fn of(kept: &[Kept], nv: usize) -> Incident {
+        let mut start = vec![0usize; nv + 1];
+        for e in kept {
+            start[e.ends[0] + 1] += 1;
+            start[e.ends[1] + 1] += 1;
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut edges = vec![0usize; start[nv]];
+        for (k, e) in kept.iter().enumerate() {
+            for v in e.ends {
+                edges[fill[v]] = k;
+                fill[v] += 1;
+            }
+        }
+        Incident { start, edges }
+    }
+
+    fn around(&self, v: usize) -> &[usize] {
+        &self.edges[self.start[v]..self.start[v + 1]]
+    }
+}
+
+/// Chains the kept edges through the vertices that join two labels and two kept
+/// edges: one chain from every node (a vertex of three or more labels, or not two
+/// kept edges) along each of its unused edges, then the closed loops left. Each
+/// edge's points move into its chain.
+fn chain_edges(mut kept: Vec<Kept>, labels: &[Vec<Generator>]) -> Vec<Chain> {
+    let incident = Incident::of(&kept, labels.len());
+    let is_node = |v: usize| labels[v].len() >= 3 || incident.around(v).len() != 2;
+    let mut used = vec![false; kept.len()];
+    let mut chains: Vec<Chain> = Vec::new();
+    // The chain from vertex `from` along `start_edge`, its last vertex, and whether it
+    // closed a loop.
+    let walk = |start_edge: usize, from: usize, kept: &mut [Kept], used: &mut [bool]| {
+        let mut points: Vec<Point> = Vec::new();
+        let (mut e, mut v) = (start_edge, from);
+        loop {
+            used[e] = true;
+            let ed = &mut kept[e];
+            let forward = ed.ends[0] == v;
+            let mut pts = std::mem::take(&mut ed.points);
+            if !forward {
+                pts.reverse();
+            }
+            if points.is_empty() {
+                points = pts;
+            } else {
+                points.extend_from_slice(&pts[1..]);
+            }
+            v = if forward { ed.ends[1] } else { ed.ends[0] };
+            if is_node(v) {
+                return (points, v, false);
+            }
+            match incident.around(v).iter().find(|&&k| !used[k]) {
+                Some(&k) => e = k,
+                None => return (points, v, true), // closed loop
+            }
+        }
+    };
+    for v in 0..labels.len() {
+        if !is_node(v) {
+            continue;
+        }
+        for &k in incident.around(v) {
+            if used[k] {
+                continue;
+            }
+            let (points, end, _) = walk(k, v, &mut kept, &mut used);
+            chains.push((points, Some(v), Some(end), kept[k].sites));
+        }
+    }
+    for k in 0..kept.len() {
+        if !used[k] {
+            let start = kept[k].ends[0];
+            let (mut points, _, _) = walk(k, start, &mut kept, &mut used);
+            if points.first() != points.last() {
+                if let Some(&p) = points.first() {
+                    points.push(p);
+                }
+            }
+            chains.push((points, None, None, kept[k].sites));
+        }
+    }
+    chains
+}
+
 fn assemble(
     g: &Generators,
     scene: &Scene,
@@ -338,11 +443,6 @@ fn assemble(
         }
     }
     // Kept edges: different labels, not a zone boundary, positive length.
-    struct Kept {
-        sites: [Generator; 2],
-        ends: [usize; 2],
-        points: Vec<Point>,
-    }
     let mut kept: Vec<Kept> = Vec::new();
     for e in raw_edges {
         let [la, lb] = e.gens.map(|x| g.label(x, mode));
@@ -359,66 +459,7 @@ fn assemble(
             points: e.points,
         });
     }
-    // Chain through vertices that join two labels and two kept edges.
-    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); nv];
-    for (k, e) in kept.iter().enumerate() {
-        incident[e.ends[0]].push(k);
-        incident[e.ends[1]].push(k);
-    }
-    let is_node = |v: usize| labels[v].len() >= 3 || incident[v].len() != 2;
-    let mut used = vec![false; kept.len()];
-    let mut chains: Vec<Chain> = Vec::new();
-    let walk = |start_edge: usize, from: usize, used: &mut Vec<bool>| {
-        let mut points: Vec<Point> = Vec::new();
-        let (mut e, mut v) = (start_edge, from);
-        loop {
-            used[e] = true;
-            let ed = &kept[e];
-            let forward = ed.ends[0] == v;
-            let mut pts = ed.points.clone();
-            if !forward {
-                pts.reverse();
-            }
-            if points.is_empty() {
-                points = pts;
-            } else {
-                points.extend_from_slice(&pts[1..]);
-            }
-            v = if forward { ed.ends[1] } else { ed.ends[0] };
-            if is_node(v) {
-                return (points, v, false);
-            }
-            match incident[v].iter().find(|&&k| !used[k]) {
-                Some(&k) => e = k,
-                None => return (points, v, true), // closed loop
-            }
-        }
-    };
-    for (v, around) in incident.iter().enumerate() {
-        if !is_node(v) {
-            continue;
-        }
-        for &k in around {
-            if used[k] {
-                continue;
-            }
-            let (points, end, _) = walk(k, v, &mut used);
-            chains.push((points, Some(v), Some(end), kept[k].sites));
-        }
-    }
-    for k in 0..kept.len() {
-        if !used[k] {
-            let start = kept[k].ends[0];
-            let (mut points, _, _) = walk(k, start, &mut used);
-            if points.first() != points.last() {
-                if let Some(&p) = points.first() {
-                    points.push(p);
-                }
-            }
-            chains.push((points, None, None, kept[k].sites));
-        }
-    }
-
+    let chains = chain_edges(kept, &labels);
     // Insides of polygons, clipping, output indices.
     let domain = scene.domain;
     let mut out = VoronoiComplex::default();

@@ -198,35 +198,51 @@ impl SegmentDiagram {
             arcs: &self.arcs,
             faces_at_point: &[],
         };
-        let mut edges = Vec::new();
-        for (h, he) in g.edges.iter().enumerate() {
-            let t = he.twin as usize;
-            if h > t {
-                continue;
-            }
-            let (a, b) = (he.origin as usize, g.edges[t].origin as usize);
-            if index[a] == usize::MAX || index[b] == usize::MAX {
-                continue;
-            }
-            let (fa, fb) = (he.face, g.edges[t].face);
-            let (ga, gb) = (g.faces[fa as usize].gen, g.faces[fb as usize].gen);
-            let (Some(ca), Some(cb)) = (self.caller_gen(ga), self.caller_gen(gb)) else {
-                continue;
-            };
-            let (pa, pb) = (g.vertices[a].at, g.vertices[b].at);
-            let points = sites
-                .bisector(ga, gb, pa, pb)
-                .polyline(pa, pb, tol * self.scale)
-                .into_iter()
-                .map(|p| p * inv)
-                .collect();
-            edges.push(RawEdge {
-                gens: [ca, cb],
-                ends: [index[a], index[b]],
-                points,
-            });
-        }
+        let edge = |h: usize| self.raw_edge(&sites, &index, h, tol);
+        #[cfg(feature = "parallel")]
+        let edges = {
+            use rayon::prelude::*;
+            (0..g.edges.len())
+                .into_par_iter()
+                .with_min_len(1 << 12)
+                .filter_map(edge)
+                .collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let edges = (0..g.edges.len()).filter_map(edge).collect();
         (vertices, edges)
+    }
+
+    /// The raw edge of half-edge `h` (`None` for the second half-edge of a pair, and
+    /// for edges at a far generator or the vertex at infinity); `index` maps live
+    /// vertices to their raw index (`usize::MAX` for the others).
+    fn raw_edge(&self, sites: &Sites, index: &[usize], h: usize, tol: f64) -> Option<RawEdge> {
+        let g = &self.graph;
+        let he = &g.edges[h];
+        let t = he.twin as usize;
+        if h > t {
+            return None;
+        }
+        let (a, b) = (he.origin as usize, g.edges[t].origin as usize);
+        if index[a] == usize::MAX || index[b] == usize::MAX {
+            return None;
+        }
+        let (fa, fb) = (he.face, g.edges[t].face);
+        let (ga, gb) = (g.faces[fa as usize].gen, g.faces[fb as usize].gen);
+        let (ca, cb) = (self.caller_gen(ga)?, self.caller_gen(gb)?);
+        let (pa, pb) = (g.vertices[a].at, g.vertices[b].at);
+        let inv = 1.0 / self.scale;
+        let points = sites
+            .bisector(ga, gb, pa, pb)
+            .polyline(pa, pb, tol * self.scale)
+            .into_iter()
+            .map(|p| p * inv)
+            .collect();
+        Some(RawEdge {
+            gens: [ca, cb],
+            ends: [index[a], index[b]],
+            points,
+        })
     }
 }
 

@@ -44,14 +44,14 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
     };
     let s = [sample(0.0), sample(0.5), sample(1.0)];
     let quad = |value: &dyn Fn((f64, f64, f64)) -> f64| interpolate(s.map(value));
-    let mut breaks: Vec<f64> = Vec::with_capacity(12);
-    let mut extrema: Vec<f64> = Vec::with_capacity(4);
+    let mut breaks = Fractions::default();
+    let mut extrema = Fractions::default();
     let mut add_roots = |c: [f64; 3]| {
-        breaks.extend(
-            quadratic_roots(c)
-                .into_iter()
-                .filter(|r| *r > 0.0 && *r < 1.0),
-        );
+        for r in quadratic_roots(c).into_iter().flatten() {
+            if r > 0.0 && r < 1.0 {
+                breaks.push(r);
+            }
+        }
         // Two roots closer than rounding can resolve (a piece narrower than about
         // 1e-8 of the edge) leave no break: the extremum between them is tested too.
         let top = -c[1] / (2.0 * c[2]);
@@ -71,22 +71,24 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
             add_roots(quad(&|(_, h, t)| h * h - t * t));
         }
     }
-    breaks.extend_from_slice(&extrema);
+    for &top in extrema.as_slice() {
+        breaks.push(top);
+    }
     breaks.push(0.0);
     breaks.push(1.0);
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
+    let breaks = breaks.sorted_distinct();
+    let extrema = extrema.as_slice();
 
     let claims_at = |lambda: f64| {
         let (x, t) = bis.at_fraction(from, to, lambda);
         line.claims(x, t)
     };
-    let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len());
+    let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len);
     let mut push = |lo: f64, hi: f64, claimed: bool| match pieces.last_mut() {
         Some(last) if last.claimed == claimed => last.hi = hi,
         _ => pieces.push(Piece { lo, hi, claimed }),
     };
-    for w in breaks.windows(2) {
+    for w in breaks.as_slice().windows(2) {
         if extrema.contains(&w[0]) {
             // Zero-width when the claim there differs from the pieces on both sides.
             push(w[0], w[0], claims_at(w[0]));
@@ -94,6 +96,40 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
         push(w[0], w[1], claims_at(0.5 * (w[0] + w[1])));
     }
     pieces
+}
+
+/// A few fractions (breaks of a bisector piece: at most two roots of each of four
+/// quadratics, their extrema, and the two ends), without allocating.
+#[derive(Default)]
+struct Fractions {
+    values: [f64; 16],
+    len: usize,
+}
+
+impl Fractions {
+    fn push(&mut self, x: f64) {
+        self.values[self.len] = x;
+        self.len += 1;
+    }
+
+    fn as_slice(&self) -> &[f64] {
+        &self.values[..self.len]
+    }
+
+    /// The fractions in increasing order, equal ones once.
+    fn sorted_distinct(mut self) -> Fractions {
+        let v = &mut self.values[..self.len];
+        v.sort_by(f64::total_cmp);
+        let mut n = 0;
+        for k in 0..v.len() {
+            if n == 0 || v[k] != v[n - 1] {
+                v[n] = v[k];
+                n += 1;
+            }
+        }
+        self.len = n;
+        self
+    }
 }
 
 /// Fractions sampled where the claim is not polynomial in the fraction (conics of
@@ -132,27 +168,23 @@ fn interpolate([y0, yh, y1]: [f64; 3]) -> [f64; 3] {
 
 /// The real roots of `c0 + c1·λ + c2·λ²` (a leading coefficient negligible against the
 /// others makes it linear), by the cancellation-free formula.
-fn quadratic_roots([c0, c1, c2]: [f64; 3]) -> Vec<f64> {
+fn quadratic_roots([c0, c1, c2]: [f64; 3]) -> [Option<f64>; 2] {
     let scale = c0.abs().max(c1.abs()).max(c2.abs());
     if scale == 0.0 || !scale.is_finite() {
-        return Vec::new();
+        return [None, None];
     }
     if c2.abs() <= 1e-12 * scale {
-        return if c1 != 0.0 {
-            vec![-c0 / c1]
-        } else {
-            Vec::new()
-        };
+        return [(c1 != 0.0).then(|| -c0 / c1), None];
     }
     let disc = c1 * c1 - 4.0 * c2 * c0;
     if disc < 0.0 {
-        return Vec::new();
+        return [None, None];
     }
     let q = -0.5 * (c1 + disc.sqrt().copysign(c1));
     if q == 0.0 {
-        return vec![0.0];
+        return [Some(0.0), None];
     }
-    vec![q / c2, c0 / q]
+    [Some(q / c2), Some(c0 / q)]
 }
 
 #[cfg(test)]
@@ -162,11 +194,12 @@ mod tests {
 
     #[test]
     fn roots_of_quadratics() {
-        let mut r = quadratic_roots([2.0, -3.0, 1.0]);
+        let roots = |c| quadratic_roots(c).into_iter().flatten().collect::<Vec<_>>();
+        let mut r = roots([2.0, -3.0, 1.0]);
         r.sort_by(f64::total_cmp);
         assert_eq!(r, vec![1.0, 2.0]);
-        assert_eq!(quadratic_roots([1.0, 0.0, 1.0]), Vec::<f64>::new());
-        assert_eq!(quadratic_roots([-1.0, 2.0, 0.0]), vec![0.5]);
+        assert_eq!(roots([1.0, 0.0, 1.0]), Vec::<f64>::new());
+        assert_eq!(roots([-1.0, 2.0, 0.0]), vec![0.5]);
     }
 
     /// A point 1e-7 from the segment keeps a needle about 1e-4 wide around it; the

@@ -319,6 +319,55 @@ struct Kept {
     points: Vec<Point>,
 }
 
+/// The labels of each vertex of the union–find's merged vertices (their roots; none
+/// for the others), in the order of the raw vertices and their generators, each once.
+struct Labels {
+    /// Root `r`'s labels are `items[start[r]..start[r] + len[r]]`.
+    start: Vec<usize>,
+    len: Vec<usize>,
+    items: Vec<Generator>,
+}
+
+impl Labels {
+    fn of(
+        g: &Generators,
+        mode: Mode,
+        raw: &[super::segments::RawVertex],
+        parent: &mut [usize],
+    ) -> Labels {
+        let nv = raw.len();
+        let root: Vec<usize> = (0..nv).map(|v| find(parent, v)).collect();
+        // Room for every generator of the vertices merged into each root.
+        let mut start = vec![0usize; nv + 1];
+        for (v, rv) in raw.iter().enumerate() {
+            start[root[v] + 1] += rv.gens.len();
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut labels = Labels {
+            items: vec![Generator::Site(0); start[nv]],
+            len: vec![0; nv],
+            start,
+        };
+        for (v, rv) in raw.iter().enumerate() {
+            let r = root[v];
+            for &gen in &rv.gens {
+                let l = g.label(gen, mode);
+                if !labels.of_vertex(r).contains(&l) {
+                    labels.items[labels.start[r] + labels.len[r]] = l;
+                    labels.len[r] += 1;
+                }
+            }
+        }
+        labels
+    }
+
+    fn of_vertex(&self, v: usize) -> &[Generator] {
+        &self.items[self.start[v]..self.start[v] + self.len[v]]
+    }
+}
+
 /// The kept edges around each vertex, in the order of the edges (an edge from a
 /// vertex to itself twice), as one flat list.
 struct Incident {
@@ -357,9 +406,10 @@ impl Incident {
 /// edges: one chain from every node (a vertex of three or more labels, or not two
 /// kept edges) along each of its unused edges, then the closed loops left. Each
 /// edge's points move into its chain.
-fn chain_edges(mut kept: Vec<Kept>, labels: &[Vec<Generator>]) -> Vec<Chain> {
-    let incident = Incident::of(&kept, labels.len());
-    let is_node = |v: usize| labels[v].len() >= 3 || incident.around(v).len() != 2;
+fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
+    let nv = labels.len.len();
+    let incident = Incident::of(&kept, nv);
+    let is_node = |v: usize| labels.len[v] >= 3 || incident.around(v).len() != 2;
     let mut used = vec![false; kept.len()];
     let mut chains: Vec<Chain> = Vec::new();
     // The chain from vertex `from` along `start_edge`, its last vertex, and whether it
@@ -390,7 +440,7 @@ fn chain_edges(mut kept: Vec<Kept>, labels: &[Vec<Generator>]) -> Vec<Chain> {
             }
         }
     };
-    for v in 0..labels.len() {
+    for v in 0..nv {
         if !is_node(v) {
             continue;
         }
@@ -432,16 +482,7 @@ fn assemble(
         let (a, b) = (find(&mut parent, e.ends[0]), find(&mut parent, e.ends[1]));
         parent[a.max(b)] = a.min(b);
     }
-    let mut labels: Vec<Vec<Generator>> = vec![Vec::new(); nv];
-    for (v, rv) in raw_vertices.iter().enumerate() {
-        let r = find(&mut parent, v);
-        for &gen in &rv.gens {
-            let l = g.label(gen, mode);
-            if !labels[r].contains(&l) {
-                labels[r].push(l);
-            }
-        }
-    }
+    let labels = Labels::of(g, mode, &raw_vertices, &mut parent);
     // Kept edges: different labels, not a zone boundary, positive length.
     let mut kept: Vec<Kept> = Vec::new();
     for e in raw_edges {
@@ -470,7 +511,7 @@ fn assemble(
             return None;
         }
         Some(*out_index[v].get_or_insert_with(|| {
-            let mut sites = labels[v].clone();
+            let mut sites = labels.of_vertex(v).to_vec();
             sites.sort();
             out.vertices.push(Vertex { at, sites });
             out.vertices.len() - 1
@@ -488,7 +529,9 @@ fn assemble(
             points[end] = p.lerp(q, (hair / len).min(0.5));
         }
     };
-    for (mut points, from, to, sites) in chains {
+    // Pulled, kept by the insides, clipped: chain by chain (in parallel), then numbered
+    // in order.
+    let clip = |(mut points, from, to, sites): Chain| {
         if from.is_some_and(|v| raw_vertices[v].t <= hair) {
             pull(&mut points, true);
         }
@@ -497,11 +540,23 @@ fn assemble(
         }
         let mid = (points.len() - 1) / 2;
         let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
-        if inside != (mode == Mode::MedialAxis) {
-            continue;
-        }
+        (inside == (mode == Mode::MedialAxis))
+            .then(|| (clip_polyline(&points, &domain), from, to, sites))
+    };
+    #[cfg(feature = "parallel")]
+    let clipped: Vec<_> = {
+        use rayon::prelude::*;
+        chains
+            .into_par_iter()
+            .with_min_len(1 << 10)
+            .map(clip)
+            .collect()
+    };
+    #[cfg(not(feature = "parallel"))]
+    let clipped: Vec<_> = chains.into_iter().map(clip).collect();
+    for (pieces, from, to, sites) in clipped.into_iter().flatten() {
         let closed_loop = from.is_none();
-        for (piece, start_cut, end_cut) in clip_polyline(&points, &domain) {
+        for (piece, start_cut, end_cut) in pieces {
             let from = if start_cut || closed_loop {
                 None
             } else {

@@ -171,27 +171,21 @@ impl SegmentDiagram {
     /// bisectors.
     pub(crate) fn raw(&self, tol: f64) -> (Vec<RawVertex>, Vec<RawEdge>) {
         let g = &self.graph;
-        let inv = 1.0 / self.scale;
+        let live: Vec<usize> = (0..g.vertices.len())
+            .filter(|&v| g.vertices[v].alive && v as u32 != GHOST)
+            .collect();
         let mut index = vec![usize::MAX; g.vertices.len()];
-        let mut vertices = Vec::new();
-        for (v, vx) in g.vertices.iter().enumerate() {
-            if !vx.alive || v as u32 == GHOST {
-                continue;
-            }
-            let mut gens: Vec<Gen> = Vec::with_capacity(3);
-            for e in g.outgoing(v as u32) {
-                let gen = self.caller_gen(g.faces[g.edges[e as usize].face as usize].gen);
-                if let Some(c) = gen.filter(|c| !gens.contains(c)) {
-                    gens.push(c);
-                }
-            }
-            index[v] = vertices.len();
-            vertices.push(RawVertex {
-                at: vx.at * inv,
-                t: vx.t * inv,
-                gens,
-            });
+        for (k, &v) in live.iter().enumerate() {
+            index[v] = k;
         }
+        let vertex = |&v: &usize| self.raw_vertex(v);
+        #[cfg(feature = "parallel")]
+        let vertices = {
+            use rayon::prelude::*;
+            live.par_iter().with_min_len(1 << 12).map(vertex).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let vertices = live.iter().map(vertex).collect();
         let sites = Sites {
             points: &self.points,
             lines: &self.lines,
@@ -211,6 +205,25 @@ impl SegmentDiagram {
         #[cfg(not(feature = "parallel"))]
         let edges = (0..g.edges.len()).filter_map(edge).collect();
         (vertices, edges)
+    }
+
+    /// The raw vertex of live graph vertex `v`, with its generators, each once.
+    fn raw_vertex(&self, v: usize) -> RawVertex {
+        let g = &self.graph;
+        let vx = &g.vertices[v];
+        let mut gens: Vec<Gen> = Vec::with_capacity(3);
+        for e in g.outgoing(v as u32) {
+            let gen = self.caller_gen(g.faces[g.edges[e as usize].face as usize].gen);
+            if let Some(c) = gen.filter(|c| !gens.contains(c)) {
+                gens.push(c);
+            }
+        }
+        let inv = 1.0 / self.scale;
+        RawVertex {
+            at: vx.at * inv,
+            t: vx.t * inv,
+            gens,
+        }
     }
 
     /// The raw edge of half-edge `h` (`None` for the second half-edge of a pair, and

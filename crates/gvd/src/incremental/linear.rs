@@ -292,11 +292,13 @@ pub fn linear_voronoi(scene: &Scene) -> Result<VoronoiComplex, Error> {
     }
     let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain)?;
     let (vertices, edges) = diagram.raw(scene.epsilon / 4.0);
+    let overrides = diagram.overrides;
+    // The graph is no longer needed: free it before the output is assembled.
+    drop(diagram);
     let mut complex = assemble(&g, scene, vertices, edges);
-    complex.stats.insert(
-        "topology_overrides".into(),
-        serde_json::json!(diagram.overrides),
-    );
+    complex
+        .stats
+        .insert("topology_overrides".into(), serde_json::json!(overrides));
     Ok(complex)
 }
 

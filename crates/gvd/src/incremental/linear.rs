@@ -354,11 +354,13 @@ pub fn linear_voronoi(scene: &Scene) -> Result<VoronoiComplex, Error> {
     }
     let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain)?;
     let (vertices, edges) = diagram.raw(scene.epsilon / 4.0);
+    let overrides = diagram.overrides;
+    // The graph is no longer needed: free it before the output is assembled.
+    drop(diagram);
     let mut complex = assemble(&g, scene, vertices, edges);
-    complex.stats.insert(
-        "topology_overrides".into(),
-        serde_json::json!(diagram.overrides),
-    );
+    complex
+        .stats
+        .insert("topology_overrides".into(), serde_json::json!(overrides));
     Ok(complex)
 }
 
@@ -372,6 +374,161 @@ fn find(parent: &mut [usize], mut v: usize) -> usize {
         v = parent[v];
     }
     v
+}
+
+/// A raw edge kept for the output, its ends merged across zero-length edges.
+struct Kept {
+    sites: [Generator; 2],
+    ends: [usize; 2],
+    points: Vec<Point>,
+}
+
+/// The labels of each vertex of the union–find's merged vertices (their roots; none
+/// for the others), in the order of the raw vertices and their generators, each once.
+struct Labels {
+    /// Root `r`'s labels are `items[start[r]..start[r] + len[r]]`.
+    start: Vec<usize>,
+    len: Vec<usize>,
+    items: Vec<Generator>,
+}
+
+impl Labels {
+    fn of(
+        g: &Generators,
+        mode: Mode,
+        raw: &[super::segments::RawVertex],
+        parent: &mut [usize],
+    ) -> Labels {
+        let nv = raw.len();
+        let root: Vec<usize> = (0..nv).map(|v| find(parent, v)).collect();
+        // Room for every generator of the vertices merged into each root.
+        let mut start = vec![0usize; nv + 1];
+        for (v, rv) in raw.iter().enumerate() {
+            start[root[v] + 1] += rv.gens.len();
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut labels = Labels {
+            items: vec![Generator::Site(0); start[nv]],
+            len: vec![0; nv],
+            start,
+        };
+        for (v, rv) in raw.iter().enumerate() {
+            let r = root[v];
+            for &gen in &rv.gens {
+                let l = g.label(gen, mode);
+                if !labels.of_vertex(r).contains(&l) {
+                    labels.items[labels.start[r] + labels.len[r]] = l;
+                    labels.len[r] += 1;
+                }
+            }
+        }
+        labels
+    }
+
+    fn of_vertex(&self, v: usize) -> &[Generator] {
+        &self.items[self.start[v]..self.start[v] + self.len[v]]
+    }
+}
+
+/// The kept edges around each vertex, in the order of the edges (an edge from a
+/// vertex to itself twice), as one flat list.
+struct Incident {
+    /// Vertex `v`'s edges are `edges[start[v]..start[v + 1]]`.
+    start: Vec<usize>,
+    edges: Vec<usize>,
+}
+
+impl Incident {
+    fn of(kept: &[Kept], nv: usize) -> Incident {
+        let mut start = vec![0usize; nv + 1];
+        for e in kept {
+            start[e.ends[0] + 1] += 1;
+            start[e.ends[1] + 1] += 1;
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut edges = vec![0usize; start[nv]];
+        for (k, e) in kept.iter().enumerate() {
+            for v in e.ends {
+                edges[fill[v]] = k;
+                fill[v] += 1;
+            }
+        }
+        Incident { start, edges }
+    }
+
+    fn around(&self, v: usize) -> &[usize] {
+        &self.edges[self.start[v]..self.start[v + 1]]
+    }
+}
+
+/// Chains the kept edges through the vertices that join two labels and two kept
+/// edges: one chain from every node (a vertex of three or more labels, or not two
+/// kept edges) along each of its unused edges, then the closed loops left. Each
+/// edge's points move into its chain.
+fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
+    let nv = labels.len.len();
+    let incident = Incident::of(&kept, nv);
+    let is_node = |v: usize| labels.len[v] >= 3 || incident.around(v).len() != 2;
+    let mut used = vec![false; kept.len()];
+    let mut chains: Vec<Chain> = Vec::new();
+    // The chain from vertex `from` along `start_edge`, its last vertex, and whether it
+    // closed a loop.
+    let walk = |start_edge: usize, from: usize, kept: &mut [Kept], used: &mut [bool]| {
+        let mut points: Vec<Point> = Vec::new();
+        let (mut e, mut v) = (start_edge, from);
+        loop {
+            used[e] = true;
+            let ed = &mut kept[e];
+            let forward = ed.ends[0] == v;
+            let mut pts = std::mem::take(&mut ed.points);
+            if !forward {
+                pts.reverse();
+            }
+            if points.is_empty() {
+                points = pts;
+            } else {
+                points.extend_from_slice(&pts[1..]);
+            }
+            v = if forward { ed.ends[1] } else { ed.ends[0] };
+            if is_node(v) {
+                return (points, v, false);
+            }
+            match incident.around(v).iter().find(|&&k| !used[k]) {
+                Some(&k) => e = k,
+                None => return (points, v, true), // closed loop
+            }
+        }
+    };
+    for v in 0..nv {
+        if !is_node(v) {
+            continue;
+        }
+        for &k in incident.around(v) {
+            if used[k] {
+                continue;
+            }
+            let (points, end, _) = walk(k, v, &mut kept, &mut used);
+            chains.push((points, Some(v), Some(end), kept[k].sites));
+        }
+    }
+    for k in 0..kept.len() {
+        if !used[k] {
+            let start = kept[k].ends[0];
+            let (mut points, _, _) = walk(k, start, &mut kept, &mut used);
+            if points.first() != points.last() {
+                if let Some(&p) = points.first() {
+                    points.push(p);
+                }
+            }
+            chains.push((points, None, None, kept[k].sites));
+        }
+    }
+    chains
 }
 
 fn assemble(
@@ -389,22 +546,8 @@ fn assemble(
         let (a, b) = (find(&mut parent, e.ends[0]), find(&mut parent, e.ends[1]));
         parent[a.max(b)] = a.min(b);
     }
-    let mut labels: Vec<Vec<Generator>> = vec![Vec::new(); nv];
-    for (v, rv) in raw_vertices.iter().enumerate() {
-        let r = find(&mut parent, v);
-        for &gen in &rv.gens {
-            let l = g.label(gen, mode);
-            if !labels[r].contains(&l) {
-                labels[r].push(l);
-            }
-        }
-    }
+    let labels = Labels::of(g, mode, &raw_vertices, &mut parent);
     // Kept edges: different labels, not a zone boundary, positive length.
-    struct Kept {
-        sites: [Generator; 2],
-        ends: [usize; 2],
-        points: Vec<Point>,
-    }
     let mut kept: Vec<Kept> = Vec::new();
     for e in raw_edges {
         let [la, lb] = e.gens.map(|x| g.label(x, mode));
@@ -421,66 +564,7 @@ fn assemble(
             points: e.points,
         });
     }
-    // Chain through vertices that join two labels and two kept edges.
-    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); nv];
-    for (k, e) in kept.iter().enumerate() {
-        incident[e.ends[0]].push(k);
-        incident[e.ends[1]].push(k);
-    }
-    let is_node = |v: usize| labels[v].len() >= 3 || incident[v].len() != 2;
-    let mut used = vec![false; kept.len()];
-    let mut chains: Vec<Chain> = Vec::new();
-    let walk = |start_edge: usize, from: usize, used: &mut Vec<bool>| {
-        let mut points: Vec<Point> = Vec::new();
-        let (mut e, mut v) = (start_edge, from);
-        loop {
-            used[e] = true;
-            let ed = &kept[e];
-            let forward = ed.ends[0] == v;
-            let mut pts = ed.points.clone();
-            if !forward {
-                pts.reverse();
-            }
-            if points.is_empty() {
-                points = pts;
-            } else {
-                points.extend_from_slice(&pts[1..]);
-            }
-            v = if forward { ed.ends[1] } else { ed.ends[0] };
-            if is_node(v) {
-                return (points, v, false);
-            }
-            match incident[v].iter().find(|&&k| !used[k]) {
-                Some(&k) => e = k,
-                None => return (points, v, true), // closed loop
-            }
-        }
-    };
-    for (v, around) in incident.iter().enumerate() {
-        if !is_node(v) {
-            continue;
-        }
-        for &k in around {
-            if used[k] {
-                continue;
-            }
-            let (points, end, _) = walk(k, v, &mut used);
-            chains.push((points, Some(v), Some(end), kept[k].sites));
-        }
-    }
-    for k in 0..kept.len() {
-        if !used[k] {
-            let start = kept[k].ends[0];
-            let (mut points, _, _) = walk(k, start, &mut used);
-            if points.first() != points.last() {
-                if let Some(&p) = points.first() {
-                    points.push(p);
-                }
-            }
-            chains.push((points, None, None, kept[k].sites));
-        }
-    }
-
+    let chains = chain_edges(kept, &labels);
     // Insides of polygons, clipping, output indices.
     let domain = scene.domain;
     let mut out = VoronoiComplex::default();
@@ -491,7 +575,7 @@ fn assemble(
             return None;
         }
         Some(*out_index[v].get_or_insert_with(|| {
-            let mut sites = labels[v].clone();
+            let mut sites = labels.of_vertex(v).to_vec();
             sites.sort();
             out.vertices.push(Vertex { at, sites });
             out.vertices.len() - 1
@@ -509,7 +593,9 @@ fn assemble(
             points[end] = p.lerp(q, (hair / len).min(0.5));
         }
     };
-    for (mut points, from, to, sites) in chains {
+    // Pulled, kept by the insides, clipped: chain by chain (in parallel), then numbered
+    // in order.
+    let clip = |(mut points, from, to, sites): Chain| {
         if from.is_some_and(|v| raw_vertices[v].t <= hair) {
             pull(&mut points, true);
         }
@@ -518,11 +604,23 @@ fn assemble(
         }
         let mid = (points.len() - 1) / 2;
         let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
-        if inside != (mode == Mode::MedialAxis) {
-            continue;
-        }
+        (inside == (mode == Mode::MedialAxis))
+            .then(|| (clip_polyline(&points, &domain), from, to, sites))
+    };
+    #[cfg(feature = "parallel")]
+    let clipped: Vec<_> = {
+        use rayon::prelude::*;
+        chains
+            .into_par_iter()
+            .with_min_len(1 << 10)
+            .map(clip)
+            .collect()
+    };
+    #[cfg(not(feature = "parallel"))]
+    let clipped: Vec<_> = chains.into_iter().map(clip).collect();
+    for (pieces, from, to, sites) in clipped.into_iter().flatten() {
         let closed_loop = from.is_none();
-        for (piece, start_cut, end_cut) in clip_polyline(&points, &domain) {
+        for (piece, start_cut, end_cut) in pieces {
             let from = if start_cut || closed_loop {
                 None
             } else {

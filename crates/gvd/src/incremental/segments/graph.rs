@@ -177,36 +177,55 @@ impl Graph {
     /// `next`/`prev` are inverse, a face's cycle keeps its face, and consecutive
     /// half-edges meet at a vertex. Returns the first violation.
     pub(crate) fn check(&self) -> Result<(), String> {
-        let alive = |h: usize| {
-            let e = &self.edges[h];
-            self.vertices[e.origin as usize].alive
-                && self.vertices[self.edges[e.twin as usize].origin as usize].alive
+        let edge = |h: usize| self.check_edge(h).err();
+        #[cfg(feature = "parallel")]
+        let wrong = {
+            use rayon::prelude::*;
+            (0..self.edges.len())
+                .into_par_iter()
+                .with_min_len(1 << 14)
+                .find_map_first(edge)
         };
-        for h in 0..self.edges.len() {
-            if !alive(h) {
-                continue;
-            }
-            let e = &self.edges[h];
-            if self.edges[e.twin as usize].twin as usize != h {
-                return Err(format!("twin of twin of {h}"));
-            }
-            if e.next == NONE || self.edges[e.next as usize].prev as usize != h {
-                return Err(format!("prev of next of {h}"));
-            }
-            if !alive(e.next as usize) {
-                return Err(format!("next of {h} is dead"));
-            }
-            if self.edges[e.next as usize].face != e.face {
-                return Err(format!("next of {h} changes face"));
-            }
-            if self.edges[e.next as usize].origin != self.target(h as u32) {
-                return Err(format!("next of {h} does not start where {h} ends"));
-            }
+        #[cfg(not(feature = "parallel"))]
+        let wrong = (0..self.edges.len()).find_map(edge);
+        if let Some(e) = wrong {
+            return Err(e);
         }
         for (v, vx) in self.vertices.iter().enumerate() {
             if vx.alive && (vx.out == NONE || self.edges[vx.out as usize].origin as usize != v) {
                 return Err(format!("vertex {v} has a wrong outgoing half-edge"));
             }
+        }
+        Ok(())
+    }
+}
+
+impl Graph {
+    /// The half-edge invariants at half-edge `h` (none if either end is dead).
+    fn check_edge(&self, h: usize) -> Result<(), String> {
+        let alive = |h: usize| {
+            let e = &self.edges[h];
+            self.vertices[e.origin as usize].alive
+                && self.vertices[self.edges[e.twin as usize].origin as usize].alive
+        };
+        if !alive(h) {
+            return Ok(());
+        }
+        let e = &self.edges[h];
+        if self.edges[e.twin as usize].twin as usize != h {
+            return Err(format!("twin of twin of {h}"));
+        }
+        if e.next == NONE || self.edges[e.next as usize].prev as usize != h {
+            return Err(format!("prev of next of {h}"));
+        }
+        if !alive(e.next as usize) {
+            return Err(format!("next of {h} is dead"));
+        }
+        if self.edges[e.next as usize].face != e.face {
+            return Err(format!("next of {h} changes face"));
+        }
+        if self.edges[e.next as usize].origin != self.target(h as u32) {
+            return Err(format!("next of {h} does not start where {h} ends"));
         }
         Ok(())
     }

@@ -47,6 +47,15 @@ pub(crate) struct Scratch {
     vertex_stamp: Vec<u32>,
     vertex_in: Vec<bool>,
     tree: Vec<u32>,
+    /// Reused buffers: half-edges around a vertex, the candidates of `grow_tree`, and
+    /// A2's splits, their index by edge, and A3's chains.
+    around: Vec<u32>,
+    heap: BinaryHeap<Candidate>,
+    splits: Vec<(u32, u32)>,
+    split_of: Vec<(u32, u32)>,
+    chains: Vec<(usize, usize)>,
+    twin_from_exit: Vec<u32>,
+    new_edges: Vec<(u32, usize, usize)>,
     /// Vertices with `H < 0` that C4 or C5 kept out of `T`, and new vertices placed
     /// on an old vertex because the edge's far end was claimed too: 0 when the signs
     /// were consistent; otherwise the geometry near them may be off.
@@ -167,9 +176,13 @@ pub(crate) fn insert_site(
     g.faces.push(super::graph::Face { gen, edge: NONE });
     let inside = |x: Point, t: f64| site.claims(x, t);
     // (new vertex, the old half-edge now leaving it)
-    let mut splits: Vec<(u32, u32)> = Vec::new();
+    let mut splits = std::mem::take(&mut scratch.splits);
+    let mut around = std::mem::take(&mut scratch.around);
+    splits.clear();
     for &u in &scratch.tree {
-        for e in g.outgoing(u).collect::<Vec<_>>() {
+        around.clear();
+        around.extend(g.outgoing(u));
+        for &e in &around {
             let w = g.target(e);
             if scratch.is_in(w) {
                 continue;
@@ -190,35 +203,73 @@ pub(crate) fn insert_site(
             splits.push((x, e));
         }
     }
+    scratch.around = around;
+    let result = connect_chains(g, &splits, new_face, scratch);
+    scratch.splits = splits;
+    let new_edges = result?;
 
-    // A3: each chain of T along an old face F runs from an entry vertex xa (on a split
-    // edge whose right face is F) to the next exit vertex xb along F (a split edge
-    // whose left face is F); it becomes one new edge xa → xb. A face may meet T in
-    // several chains: the new region can wrap around another face. Found by walking F
-    // from xa through T (its links are still the old ones).
-    let split_of: std::collections::HashMap<u32, usize> = splits
-        .iter()
-        .enumerate()
-        .map(|(k, &(_, e))| (e, k))
-        .collect();
-    let mut chains: Vec<(usize, usize)> = Vec::with_capacity(splits.len());
+    // A fresh endpoint gets a vertex of its own, on its separator: later segments there
+    // never claim it.
+    for (k, &p) in site.ends().iter().enumerate() {
+        if fresh[k] {
+            let on_p = new_edges.iter().find(|e| g.edges[e.0 as usize].face == p);
+            if let Some(&(ne, _, _)) = on_p {
+                g.split_edge(ne, sites.points[p as usize], 0.0);
+            }
+        }
+    }
+    scratch.new_edges = new_edges;
+
+    // A4: delete T.
+    for &u in &scratch.tree {
+        g.vertices[u as usize].alive = false;
+    }
+    Ok(new_face)
+}
+
+/// A3: each chain of T along an old face F runs from an entry vertex xa (on a split
+/// edge whose right face is F) to the next exit vertex xb along F (a split edge whose
+/// left face is F); it becomes one new edge xa → xb. A face may meet T in several
+/// chains: the new region can wrap around another face. Found by walking F from xa
+/// through T (its links are still the old ones). A4's twins of the new edges form the
+/// new face. Returns the new edges (half-edge on the old face, entry split, exit
+/// split), in the buffer `sc.new_edges`.
+fn connect_chains(
+    g: &mut Graph,
+    splits: &[(u32, u32)],
+    new_face: u32,
+    sc: &mut Scratch,
+) -> Result<Vec<(u32, usize, usize)>, InsertError> {
+    // The split of each old half-edge, by binary search (edge, split index). The
+    // buffers are lost on an error, which ends the whole construction.
+    let mut split_of = std::mem::take(&mut sc.split_of);
+    split_of.clear();
+    split_of.extend(splits.iter().enumerate().map(|(k, &(_, e))| (e, k as u32)));
+    split_of.sort_unstable();
+    let mut chains = std::mem::take(&mut sc.chains);
+    chains.clear();
     for (a, &(_, ea)) in splits.iter().enumerate() {
         let mut h = g.edges[g.edges[ea as usize].twin as usize].next;
         let mut steps = 0;
-        while scratch.is_in(g.edges[h as usize].origin) {
+        while sc.is_in(g.edges[h as usize].origin) {
             h = g.edges[h as usize].next;
             steps += 1;
             if steps > g.edges.len() {
                 return Err(InsertError::BrokenChain);
             }
         }
-        let &b = split_of.get(&h).ok_or(InsertError::BrokenChain)?;
-        chains.push((a, b));
+        let b = split_of
+            .binary_search_by_key(&h, |&(e, _)| e)
+            .map_err(|_| InsertError::BrokenChain)?;
+        chains.push((a, split_of[b].1 as usize));
     }
     // Remember each new edge's twin (on the segment's face) by its start, the exit.
-    let mut twin_from_exit: Vec<u32> = vec![NONE; splits.len()];
-    let mut new_edges: Vec<(u32, usize, usize)> = Vec::with_capacity(splits.len());
-    for (a, b) in chains {
+    let twin_from_exit = &mut sc.twin_from_exit;
+    twin_from_exit.clear();
+    twin_from_exit.resize(splits.len(), NONE);
+    let mut new_edges = std::mem::take(&mut sc.new_edges);
+    new_edges.clear();
+    for &(a, b) in &chains {
         let (xa, ea) = splits[a];
         let (xb, eb) = splits[b];
         let into_a = g.edges[ea as usize].twin;
@@ -244,22 +295,9 @@ pub(crate) fn insert_site(
         g.link(ne + 1, next);
     }
     g.faces[new_face as usize].edge = new_edges[0].0 + 1;
-
-    // A fresh endpoint gets a vertex of its own, on its separator: later segments there
-    // never claim it.
-    for (k, &p) in site.ends().iter().enumerate() {
-        if fresh[k] {
-            if let Some(&(ne, _, _)) = new_edges.iter().find(|e| g.edges[e.0 as usize].face == p) {
-                g.split_edge(ne, sites.points[p as usize], 0.0);
-            }
-        }
-    }
-
-    // A4: delete T.
-    for &u in &scratch.tree {
-        g.vertices[u as usize].alive = false;
-    }
-    Ok(new_face)
+    sc.split_of = split_of;
+    sc.chains = chains;
+    Ok(new_edges)
 }
 
 /// Splits the boundary of point `p`'s face where the ray from `p` in direction `dir`
@@ -392,7 +430,8 @@ fn grow_tree(
     h: &impl Fn(&Graph, u32) -> f64,
     sc: &mut Scratch,
 ) {
-    let mut heap = BinaryHeap::new();
+    let mut heap = std::mem::take(&mut sc.heap);
+    heap.clear();
     heap.push(Candidate {
         h: h(g, seed),
         v: seed,
@@ -428,6 +467,7 @@ fn grow_tree(
             }
         }
     }
+    sc.heap = heap;
 }
 
 /// An edge from `v` to `T` whose two ends the segment claims may leave its region in
@@ -441,8 +481,10 @@ fn split_unclaimed_edges(
     v: u32,
     sc: &mut Scratch,
 ) {
-    let to_tree: Vec<u32> = g.outgoing(v).filter(|&e| sc.is_in(g.target(e))).collect();
-    for e in to_tree {
+    let mut to_tree = std::mem::take(&mut sc.around);
+    to_tree.clear();
+    to_tree.extend(g.outgoing(v).filter(|&e| sc.is_in(g.target(e))));
+    for &e in &to_tree {
         let (from, to) = (
             g.vertices[v as usize].at,
             g.vertices[g.target(e) as usize].at,
@@ -462,6 +504,7 @@ fn split_unclaimed_edges(
             sc.decide(x, false);
         }
     }
+    sc.around = to_tree;
 }
 
 /// A2's new vertex on the edge from `from` (in `T`) to `to` (out of it): where the

@@ -110,7 +110,7 @@ impl SegmentDiagram {
             .collect();
         let mut faces_at_point: Vec<Vec<u32>> = vec![Vec::new(); pd.pts.len()];
         let mut scratch = Scratch::default();
-        for k in insertion_order(segments.len() + arcs.len()) {
+        for k in insertion_order(&lines, &arc_gens) {
             let sites = Sites {
                 points: &pd.pts,
                 lines: &lines,
@@ -175,62 +175,91 @@ impl SegmentDiagram {
     /// bisectors.
     pub(crate) fn raw(&self, tol: f64) -> (Vec<RawVertex>, Vec<RawEdge>) {
         let g = &self.graph;
-        let inv = 1.0 / self.scale;
+        let live: Vec<usize> = (0..g.vertices.len())
+            .filter(|&v| g.vertices[v].alive && v as u32 != GHOST)
+            .collect();
         let mut index = vec![usize::MAX; g.vertices.len()];
-        let mut vertices = Vec::new();
-        for (v, vx) in g.vertices.iter().enumerate() {
-            if !vx.alive || v as u32 == GHOST {
-                continue;
-            }
-            let mut gens: Vec<Gen> = Vec::with_capacity(3);
-            for e in g.outgoing(v as u32) {
-                let gen = self.caller_gen(g.faces[g.edges[e as usize].face as usize].gen);
-                if let Some(c) = gen.filter(|c| !gens.contains(c)) {
-                    gens.push(c);
-                }
-            }
-            index[v] = vertices.len();
-            vertices.push(RawVertex {
-                at: vx.at * inv,
-                t: vx.t * inv,
-                gens,
-            });
+        for (k, &v) in live.iter().enumerate() {
+            index[v] = k;
         }
+        let vertex = |&v: &usize| self.raw_vertex(v);
+        #[cfg(feature = "parallel")]
+        let vertices = {
+            use rayon::prelude::*;
+            live.par_iter().with_min_len(1 << 12).map(vertex).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let vertices = live.iter().map(vertex).collect();
         let sites = Sites {
             points: &self.points,
             lines: &self.lines,
             arcs: &self.arcs,
             faces_at_point: &[],
         };
-        let mut edges = Vec::new();
-        for (h, he) in g.edges.iter().enumerate() {
-            let t = he.twin as usize;
-            if h > t {
-                continue;
-            }
-            let (a, b) = (he.origin as usize, g.edges[t].origin as usize);
-            if index[a] == usize::MAX || index[b] == usize::MAX {
-                continue;
-            }
-            let (fa, fb) = (he.face, g.edges[t].face);
-            let (ga, gb) = (g.faces[fa as usize].gen, g.faces[fb as usize].gen);
-            let (Some(ca), Some(cb)) = (self.caller_gen(ga), self.caller_gen(gb)) else {
-                continue;
-            };
-            let (pa, pb) = (g.vertices[a].at, g.vertices[b].at);
-            let points = sites
-                .bisector(ga, gb, pa, pb)
-                .polyline(pa, pb, tol * self.scale)
-                .into_iter()
-                .map(|p| p * inv)
-                .collect();
-            edges.push(RawEdge {
-                gens: [ca, cb],
-                ends: [index[a], index[b]],
-                points,
-            });
-        }
+        let edge = |h: usize| self.raw_edge(&sites, &index, h, tol);
+        #[cfg(feature = "parallel")]
+        let edges = {
+            use rayon::prelude::*;
+            (0..g.edges.len())
+                .into_par_iter()
+                .with_min_len(1 << 12)
+                .filter_map(edge)
+                .collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let edges = (0..g.edges.len()).filter_map(edge).collect();
         (vertices, edges)
+    }
+
+    /// The raw vertex of live graph vertex `v`, with its generators, each once.
+    fn raw_vertex(&self, v: usize) -> RawVertex {
+        let g = &self.graph;
+        let vx = &g.vertices[v];
+        let mut gens: Vec<Gen> = Vec::with_capacity(3);
+        for e in g.outgoing(v as u32) {
+            let gen = self.caller_gen(g.faces[g.edges[e as usize].face as usize].gen);
+            if let Some(c) = gen.filter(|c| !gens.contains(c)) {
+                gens.push(c);
+            }
+        }
+        let inv = 1.0 / self.scale;
+        RawVertex {
+            at: vx.at * inv,
+            t: vx.t * inv,
+            gens,
+        }
+    }
+
+    /// The raw edge of half-edge `h` (`None` for the second half-edge of a pair, and
+    /// for edges at a far generator or the vertex at infinity); `index` maps live
+    /// vertices to their raw index (`usize::MAX` for the others).
+    fn raw_edge(&self, sites: &Sites, index: &[usize], h: usize, tol: f64) -> Option<RawEdge> {
+        let g = &self.graph;
+        let he = &g.edges[h];
+        let t = he.twin as usize;
+        if h > t {
+            return None;
+        }
+        let (a, b) = (he.origin as usize, g.edges[t].origin as usize);
+        if index[a] == usize::MAX || index[b] == usize::MAX {
+            return None;
+        }
+        let (fa, fb) = (he.face, g.edges[t].face);
+        let (ga, gb) = (g.faces[fa as usize].gen, g.faces[fb as usize].gen);
+        let (ca, cb) = (self.caller_gen(ga)?, self.caller_gen(gb)?);
+        let (pa, pb) = (g.vertices[a].at, g.vertices[b].at);
+        let inv = 1.0 / self.scale;
+        let points = sites
+            .bisector(ga, gb, pa, pb)
+            .polyline(pa, pb, tol * self.scale)
+            .into_iter()
+            .map(|p| p * inv)
+            .collect();
+        Some(RawEdge {
+            gens: [ca, cb],
+            ends: [index[a], index[b]],
+            points,
+        })
     }
 }
 
@@ -256,17 +285,22 @@ fn frame(points: &[Point], arcs: &[ArcSpec], domain: Aabb) -> [Point; 8] {
     })
 }
 
-/// A fixed pseudo-random permutation of `0..n` (insertion in random order keeps the
-/// expected conflict trees small).
-fn insertion_order(n: usize) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..n).collect();
-    let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
-    for i in (1..n).rev() {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        let j = ((s >> 33) % (i as u64 + 1)) as usize;
-        order.swap(i, j);
-    }
-    order
+/// The insertion order of the segments (indices `0..lines.len()`) and arcs (indices
+/// after them): a biased randomized insertion order along a Hilbert curve of their
+/// middles (`order.rs`). Random rounds keep the expected conflict trees small, as a
+/// random order does; consecutive sites within a round are neighbours, so each
+/// insertion finds the graph around it still in cache.
+fn insertion_order(lines: &[Line], arcs: &[Arc]) -> Vec<usize> {
+    let middles: Vec<Point> = lines
+        .iter()
+        .map(|l| l.a + l.d * (0.5 * l.len))
+        .chain(arcs.iter().map(|a| {
+            let mid = a.a0 + 0.5 * a.span;
+            a.c + Point::new(mid.cos(), mid.sin()) * a.r
+        }))
+        .collect();
+    super::order::brio(&middles)
+        .into_iter()
+        .map(|k| k as usize)
+        .collect()
 }

@@ -27,12 +27,12 @@
 //!   failure, `tangent_joints_complete`).
 //!
 //! Known failures (scenes under `tests/data/scenes/arcs/failing/`, tests marked
-//! `#[ignore]`): the half circle closed by its diameter (the edge is drawn along the
-//! segment: both ends of that edge are on the sites, so the conic's branch is not
-//! decided), tangent (G1) joints (the joint's face has zero area and the edge along
+//! `#[ignore]`): tangent (G1) joints (the joint's face has zero area and the edge along
 //! the common normal is missing), and one arc with a point deep inside its circle.
-//! Scenes where an arc's cell reached the far generators (two-site scenes) once failed
-//! too; they pass since the segment engine adds a frame of auxiliary points, and the
+//! The half circle closed by its diameter once failed (both ends of its edge lie on
+//! the sites, so the residuals did not decide the conic's branch; now the piece of
+//! smaller clearance is taken). Scenes where an arc's cell reached the far generators
+//! (two-site scenes) once failed too; they pass since the segment engine adds a frame of auxiliary points, and the
 //! random families run both bare and with four guard points near the domain corners.
 //!
 //! Conflicts (an arc crossing a segment or another arc, arcs overlapping on one circle,
@@ -958,7 +958,6 @@ fn arc_with_point_inside_circle() {
 }
 
 #[test]
-#[ignore = "known failure: the arc/segment edge of a D is drawn along the segment (failing/d-shape-half-circle-diameter.json)"]
 fn d_shapes() {
     check_fixed("d-shape");
 }
@@ -1459,7 +1458,6 @@ proptest! {
     }
 
     #[test]
-    #[ignore = "known failure: the arc/segment edge of a D is drawn along the segment (failing/d-shape-half-circle-diameter.json)"]
     fn d_shapes_random(
         mode in mode(),
         cx in -0.3f64..0.3, cy in -0.3f64..0.3, r in 0.1f64..1.5, rot in 0.0f64..TAU,
@@ -1524,7 +1522,6 @@ fn check_failing(name: &str) {
 #[test]
 fn known_failures_still_fail_and_pass_guarded() {
     for name in [
-        "d-shape-half-circle-diameter",
         "arc-span-2.5-point-inside-deep",
         "arc-tangent-segment",
         "two-arcs-tangent-joint",
@@ -1535,13 +1532,12 @@ fn known_failures_still_fail_and_pass_guarded() {
             "{name} passes now: un-ignore its test"
         );
         let g = check_value(&guarded(v));
-        let guarded_fails = name.starts_with("d-shape") || name.contains("tangent");
+        let guarded_fails = name.contains("tangent");
         assert_eq!(g.is_err(), guarded_fails, "{name} guarded: {g:?}");
     }
 }
 
 #[test]
-#[ignore = "known failure: the arc/segment bisector inside a D (half circle + its diameter, sharing both ends) is drawn along the segment, error 1000 eps at (0, 6e-17)"]
 fn failing_d_shape() {
     check_failing("d-shape-half-circle-diameter");
 }

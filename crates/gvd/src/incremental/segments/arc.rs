@@ -307,9 +307,25 @@ fn choose(
     probes: &[Point],
 ) -> Bisector {
     let sum = |s: f64| probes.iter().map(|&x| residual(s, x).abs()).sum::<f64>();
+    let size: f64 = probes.iter().map(|p| p.norm()).sum::<f64>() + f64::MIN_POSITIVE;
     let plus_wins = match (empty(&minus), empty(&plus)) {
         (true, false) => true,
         (false, true) => false,
+        // Both curves pass through every probe (an edge whose two ends lie on the
+        // sites, as the arc and the diameter of a half disc): the edge is the piece
+        // of smaller clearance between them (the other runs out to infinity or
+        // around the far side).
+        _ if probes.len() >= 2 && sum(1.0).max(sum(-1.0)) <= 1e-9 * size => {
+            let mid = |b: &Bisector| {
+                let t = b.at_fraction(probes[0], probes[1], 0.5).1;
+                if t.is_finite() {
+                    t
+                } else {
+                    f64::INFINITY
+                }
+            };
+            mid(&plus) <= mid(&minus)
+        }
         _ => sum(1.0) <= sum(-1.0),
     };
     if plus_wins {

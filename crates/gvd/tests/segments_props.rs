@@ -22,116 +22,18 @@
 //!   same point over a two-dimensional wedge, and its completeness grid reports
 //!   "missing" edges inside that tie region (see `shared_endpoint_ties_confuse_verify`).
 
-use gvd::complex::{FeatureKind, Generator, VoronoiComplex};
+use gvd::complex::{Generator, VoronoiComplex};
 use gvd::geom::Point;
-use gvd::scene::{Mode, SiteKind};
+use gvd::scene::Mode;
 use gvd::verify::{verify, VerifyOptions};
 use gvd::{compute, Engine, Error, Options, Scene};
 use proptest::prelude::*;
 use serde_json::{json, Value};
 
+mod common;
+use common::{dist, features, generators, seg_dist};
+
 // ---------------------------------------------------------------- brute force
-
-fn seg_dist(q: Point, a: Point, b: Point) -> f64 {
-    let d = b - a;
-    let t = ((q - a).dot(d) / d.dot(d)).clamp(0.0, 1.0);
-    q.dist(a + d * t)
-}
-
-/// Corners and edges (as corner index pairs) of a site.
-fn features(kind: &SiteKind) -> (Vec<Point>, Vec<(usize, usize)>) {
-    match kind {
-        SiteKind::Point { at, .. } => (vec![*at], vec![]),
-        SiteKind::Segment { from, to } => (vec![*from, *to], vec![(0, 1)]),
-        SiteKind::Polyline { points } => (
-            points.clone(),
-            (1..points.len()).map(|k| (k - 1, k)).collect(),
-        ),
-        SiteKind::Polygon { rings } => {
-            let (mut pts, mut edges) = (Vec::new(), Vec::new());
-            for ring in rings {
-                let base = pts.len();
-                for k in 0..ring.len() {
-                    edges.push((base + k, base + (k + 1) % ring.len()));
-                }
-                pts.extend_from_slice(ring);
-            }
-            (pts, edges)
-        }
-        _ => panic!("not a linear site"),
-    }
-}
-
-fn inside_polygon(q: Point, rings: &[Vec<Point>]) -> bool {
-    let mut inside = false;
-    for ring in rings {
-        for k in 0..ring.len() {
-            let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
-            if (a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
-fn dist(s: &Scene, g: &Generator, q: Point) -> f64 {
-    match *g {
-        Generator::Site(i) => {
-            let kind = &s.sites[i].kind;
-            if let SiteKind::Polygon { rings } = kind {
-                if inside_polygon(q, rings) {
-                    return 0.0;
-                }
-            }
-            let (pts, edges) = features(kind);
-            let corners = pts.iter().map(|p| q.dist(*p));
-            let sides = edges.iter().map(|&(a, b)| seg_dist(q, pts[a], pts[b]));
-            corners.chain(sides).fold(f64::INFINITY, f64::min)
-        }
-        Generator::Feature {
-            site,
-            feature,
-            index,
-        } => {
-            let (pts, edges) = features(&s.sites[site].kind);
-            match feature {
-                FeatureKind::Corner => q.dist(pts[index]),
-                _ => {
-                    let (a, b) = edges[index];
-                    seg_dist(q, pts[a], pts[b])
-                }
-            }
-        }
-    }
-}
-
-fn generators(s: &Scene) -> Vec<Generator> {
-    let mut out = Vec::new();
-    for (i, site) in s.sites.iter().enumerate() {
-        match (&site.kind, s.mode) {
-            (SiteKind::Point { .. }, _) | (_, Mode::Voronoi) => out.push(Generator::Site(i)),
-            (kind, _) => {
-                let (pts, edges) = features(kind);
-                for k in 0..pts.len() {
-                    out.push(Generator::Feature {
-                        site: i,
-                        feature: FeatureKind::Corner,
-                        index: k,
-                    });
-                }
-                for k in 0..edges.len() {
-                    out.push(Generator::Feature {
-                        site: i,
-                        feature: FeatureKind::Edge,
-                        index: k,
-                    });
-                }
-            }
-        }
-    }
-    out
-}
 
 /// The worst brute-force error, in units of epsilon, with where it is.
 fn worst_error(s: &Scene, d: &VoronoiComplex) -> (f64, String) {

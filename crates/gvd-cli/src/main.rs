@@ -270,23 +270,40 @@ fn write_atomic(path: &Path, contents: &str) -> Result<()> {
 
 /// Writes a file through `write` (into a buffered temporary file, then renamed), so a
 /// large output is never held whole in memory.
+///
+/// A symbolic link is followed, so the link stays and its target is replaced. A path
+/// that is not a regular file (`/dev/stdout`, `/dev/null`, a FIFO) is written in place:
+/// renaming over it would replace the device with a plain file.
 fn write_atomic_with(
     path: &Path,
     write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>,
 ) -> Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path.file_name().context("output path has no file name")?;
-    let tmp = dir.join(format!(".{}.tmp", name.to_string_lossy()));
-    let file =
-        std::fs::File::create(&tmp).with_context(|| format!("cannot write {}", tmp.display()))?;
-    let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
-    write(&mut w)
-        .and_then(|()| w.flush())
-        .with_context(|| format!("cannot write {}", tmp.display()))?;
-    drop(w);
-    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))?;
+    let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let in_place = std::fs::metadata(&target).is_ok_and(|m| !m.is_file());
+    let tmp = if in_place {
+        target.clone()
+    } else {
+        let dir = target
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let name = target.file_name().context("output path has no file name")?;
+        dir.join(format!(".{}.tmp", name.to_string_lossy()))
+    };
+    let written = std::fs::File::create(&tmp).and_then(|file| {
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+        write(&mut w)?;
+        w.flush()
+    });
+    if let Err(e) = written {
+        if !in_place {
+            let _ = std::fs::remove_file(&tmp);
+        }
+        return Err(e).with_context(|| format!("cannot write {}", path.display()));
+    }
+    if !in_place {
+        std::fs::rename(&tmp, &target)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
     Ok(())
 }

@@ -160,3 +160,75 @@ fn offset_refuses_bad_distances_and_writes_nothing() {
         assert!(!target.exists(), "{d} left an output file");
     }
 }
+
+/// An output path that is not a regular file (a FIFO here, like `/dev/stdout` in a pipe)
+/// is written in place, never replaced by a plain file.
+#[cfg(unix)]
+#[test]
+fn output_into_a_fifo_keeps_the_fifo() {
+    use std::os::unix::fs::FileTypeExt;
+    let fifo = scratch("diagram.fifo");
+    let _ = std::fs::remove_file(&fifo);
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
+    };
+    let scene = repo("examples/scenes/points-mixed-0030.json");
+    let out = gvd()
+        .args([
+            "compute",
+            scene.to_str().unwrap(),
+            "--json",
+            fifo.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Checked before joining: a reader left on a replaced FIFO would wait forever.
+    assert!(std::fs::symlink_metadata(&fifo)
+        .unwrap()
+        .file_type()
+        .is_fifo());
+    let text = reader.join().unwrap();
+    let d: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(d["edges"].as_array().unwrap().len() > 30);
+    std::fs::remove_file(&fifo).unwrap();
+}
+
+/// A symbolic link is followed: the link stays and its target gets the output.
+#[cfg(unix)]
+#[test]
+fn output_through_a_symlink_replaces_the_target() {
+    let (target, link) = (scratch("linked-target.svg"), scratch("link.svg"));
+    let _ = std::fs::remove_file(&link);
+    std::fs::write(&target, "old").unwrap();
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    let scene = repo("examples/scenes/points-mixed-0030.json");
+    let out = gvd()
+        .args([
+            "compute",
+            scene.to_str().unwrap(),
+            "--svg",
+            link.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read_to_string(&target)
+        .unwrap()
+        .starts_with("<svg"));
+}

@@ -18,6 +18,7 @@ pub mod incremental;
 pub mod io;
 pub mod num;
 pub mod offset;
+mod par;
 pub mod scene;
 pub mod site;
 pub mod subdivision;

@@ -6,6 +6,7 @@ use super::predicates::{circumcenter, incircle};
 use super::PointDiagram;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
+use crate::par::{filter_map_range, map_range};
 
 /// Union–find with path halving.
 fn find(parent: &mut [u32], mut v: u32) -> u32 {
@@ -36,64 +37,68 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
     let real = |v: usize| v != GHOST as usize && g.gens[v].iter().all(|&s| s < n);
 
     // Circumcentres (scaled coordinates); the vertex at infinity gets a dummy.
-    let mut nodes: Vec<Node> = (0..nv)
-        .map(|v| {
-            let [a, b, c] = g.gens[v];
-            let at = if v == GHOST as usize {
-                Point::default()
-            } else {
-                circumcenter(pos(a), pos(b), pos(c))
-            };
-            Node {
-                at,
-                group: v as u32,
-                out: u32::MAX,
-            }
-        })
-        .collect();
+    let mut nodes: Vec<Node> = map_range(nv, 1 << 12, |v| {
+        let [a, b, c] = g.gens[v];
+        let at = if v == GHOST as usize {
+            Point::default()
+        } else {
+            circumcenter(pos(a), pos(b), pos(c))
+        };
+        Node {
+            at,
+            group: v as u32,
+            out: u32::MAX,
+        }
+    });
 
     // Merge vertices joined by zero-length edges: exactly cocircular generators. A
     // vertex with a far generator lies outside the domain, so only real ones matter.
+    let cocircular = filter_map_range(g.twin.len(), 1 << 12, |h| {
+        let t = g.twin[h] as usize;
+        let (u, w) = (h / 3, t / 3);
+        if h > t || !real(u) || !real(w) {
+            return None;
+        }
+        let [a, b, c] = g.gens[u];
+        let x = g.gens[w][(t % 3 + 2) % 3];
+        (incircle(pos(a), pos(b), pos(c), pos(x)) == 0.0).then_some((u as u32, w as u32))
+    });
+    let merged = !cocircular.is_empty();
     let mut parent: Vec<u32> = Vec::new();
-    for (h, &t) in g.twin.iter().enumerate() {
-        let (u, w) = (h / 3, t as usize / 3);
-        if (h as u32) < t && real(u) && real(w) {
-            let [a, b, c] = g.gens[u];
-            let x = g.gens[w][(t as usize % 3 + 2) % 3];
-            if incircle(pos(a), pos(b), pos(c), pos(x)) == 0.0 {
-                if parent.is_empty() {
-                    parent = (0..nv as u32).collect();
-                }
-                let (ru, rw) = (find(&mut parent, u as u32), find(&mut parent, w as u32));
-                parent[ru.max(rw) as usize] = ru.min(rw);
-            }
+    if merged {
+        parent = (0..nv as u32).collect();
+        for &(u, w) in &cocircular {
+            let (ru, rw) = (find(&mut parent, u), find(&mut parent, w));
+            parent[ru.max(rw) as usize] = ru.min(rw);
+        }
+        for v in 0..nv as u32 {
+            // full compression: the root is the group's least vertex
+            parent[v as usize] = find(&mut parent, v);
         }
     }
-    let merged = !parent.is_empty();
 
-    // Output vertices: the groups whose representative lies in the closed domain.
+    // Output vertices: the groups whose representative lies in the closed domain,
+    // numbered in vertex order.
     let inv = 1.0 / d.scale;
     let site = |s: u32| Generator::Site(d.input[s as usize] as usize);
-    let mut vertices = Vec::with_capacity(nv);
+    let mut count = 0u32;
     for v in 0..nv {
-        let rep = if merged {
-            let r = find(&mut parent, v as u32);
-            parent[v] = r; // full compression: the root is the group's least vertex
-            r as usize
-        } else {
-            v
-        };
+        let rep = if merged { parent[v] as usize } else { v };
         if rep == v && real(v) && d.domain.contains(nodes[v].at) {
-            nodes[v].out = vertices.len() as u32;
-            let mut ids = g.gens[v].map(|s| d.input[s as usize]);
-            ids.sort_unstable();
-            let sites = ids.iter().map(|&i| Generator::Site(i as usize)).collect();
-            vertices.push(Vertex {
-                at: nodes[v].at * inv,
-                sites,
-            });
+            nodes[v].out = count;
+            count += 1;
         }
     }
+    let mut vertices = filter_map_range(nv, 1 << 12, |v| {
+        (nodes[v].out != u32::MAX).then(|| {
+            let mut ids = g.gens[v].map(|s| d.input[s as usize]);
+            ids.sort_unstable();
+            Vertex {
+                at: nodes[v].at * inv,
+                sites: ids.iter().map(|&i| Generator::Site(i as usize)).collect(),
+            }
+        })
+    });
     if merged {
         for v in 0..nv {
             let r = parent[v] as usize;
@@ -115,22 +120,20 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
     }
 
     // Edges between real sites, between distinct groups, clipped to the domain.
-    let mut edges = Vec::with_capacity(g.twin.len() / 2);
-    for (h, &t) in g.twin.iter().enumerate() {
-        if (h as u32) > t {
-            continue;
+    let edges = filter_map_range(g.twin.len(), 1 << 12, |h| {
+        let h = h as u32;
+        if h > g.twin[h as usize] {
+            return None;
         }
-        let Some(((start, end), (from, to))) = clip(d, &nodes, h as u32) else {
-            continue;
-        };
-        let (a, b) = (g.right(h as u32), g.left(h as u32));
-        edges.push(Edge {
+        let ((start, end), (from, to)) = clip(d, &nodes, h)?;
+        let (a, b) = (g.right(h), g.left(h));
+        Some(Edge {
             sites: [site(b), site(a)],
             from,
             to,
             points: vec![start * inv, end * inv],
-        });
-    }
+        })
+    });
 
     let mut c = VoronoiComplex {
         vertices,

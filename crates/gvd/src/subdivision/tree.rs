@@ -194,8 +194,11 @@ fn recurse<F: DistanceField>(
         right.push((*i, r));
     }
     drop(sites);
+    let fork = params.parallel && (left.len() >= 16 || size > params.min_box * 64.0);
+    #[cfg(not(feature = "parallel"))]
+    let _ = fork; // one thread: the subtrees run in turn below
     #[cfg(feature = "parallel")]
-    if params.parallel && (left.len() >= 16 || size > params.min_box * 64.0) {
+    if fork {
         let mut rout = Vec::new();
         rayon::join(
             || recurse(fields, lattice, params, li, la, left, out),

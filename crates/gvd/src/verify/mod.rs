@@ -50,6 +50,7 @@ mod region;
 use crate::complex::{Generator, VoronoiComplex};
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
+use crate::par::map_range;
 use crate::scene::{Mode, Scene};
 use field::Field;
 use generators::Gens;
@@ -130,19 +131,6 @@ pub fn verify(
     let gens = Gens::new(scene)?;
     let ck = Checker::new(scene, &gens, diagram, opts);
     Ok(ck.run())
-}
-
-/// Maps `f` over `0..n`, in parallel with the `parallel` feature.
-fn par_map<T: Send, F: Fn(usize) -> T + Sync + Send>(n: usize, f: F) -> Vec<T> {
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        (0..n).into_par_iter().map(f).collect()
-    }
-    #[cfg(not(feature = "parallel"))]
-    {
-        (0..n).map(f).collect()
-    }
 }
 
 /// `x` with 3 significant digits, like Python's `{:.3g}`.
@@ -545,7 +533,7 @@ impl<'a> Checker<'a> {
             }
             samples.push((pts[pts.len() - 1], g));
         }
-        let errs = par_map(samples.len(), |i| {
+        let errs = map_range(samples.len(), 1, |i| {
             let (q, g) = samples[i];
             self.sample_error(q, self.edges[g].a, self.edges[g].b)
         });
@@ -677,7 +665,7 @@ impl<'a> Checker<'a> {
     /// Check b: returns ((good, total), pass).
     fn vertices(&self, problems: &mut Vec<String>) -> ((usize, usize), bool) {
         let vs = &self.diagram.vertices;
-        let errs = par_map(vs.len(), |k| {
+        let errs = map_range(vs.len(), 1, |k| {
             self.vgens[k]
                 .as_ref()
                 .map(|g| self.vertex_error(vs[k].at, g, &self.vtwice[k]))
@@ -792,7 +780,7 @@ impl<'a> Checker<'a> {
                 dom.min.y + (j as f64 + 0.5) * hy,
             )
         };
-        let labels = par_map(n * n, |k| {
+        let labels = map_range(n * n, 1, |k| {
             let q = node(k % n, k / n);
             if self.in_region(q) {
                 self.near.at(q).map(|h| h.gen)
@@ -815,7 +803,7 @@ impl<'a> Checker<'a> {
                 }
             }
         }
-        let found = par_map(pairs.len(), |p| {
+        let found = map_range(pairs.len(), 1, |p| {
             let (qa, qb, a, b) = pairs[p];
             let mut out = Vec::new();
             self.crossings(qa, qb, a, b, 0, &mut out);
@@ -838,7 +826,7 @@ impl<'a> Checker<'a> {
         let pb = Buckets::new(&mids, dom, r);
         let vat: Vec<Point> = self.diagram.vertices.iter().map(|v| v.at).collect();
         let vb = Buckets::new(&vat, dom, r);
-        let covered = par_map(crossings.len(), |c| {
+        let covered = map_range(crossings.len(), 1, |c| {
             let (x, a, b) = crossings[c];
             let key = (a.min(b), a.max(b));
             // a piece's midpoint lies within R + R/2 of x: at most 2 cells away

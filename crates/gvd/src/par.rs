@@ -1,0 +1,47 @@
+//! Order-preserving maps over `0..n`, on rayon's pool with the `parallel` feature and
+//! sequential without it, so that callers need no `cfg` of their own.
+
+/// `(0..n).map(f)`, collected in order. `min_len` is the least number of items a
+/// parallel task takes (small items want large tasks).
+pub(crate) fn map_range<T: Send>(
+    n: usize,
+    min_len: usize,
+    f: impl Fn(usize) -> T + Sync + Send,
+) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..n)
+            .into_par_iter()
+            .with_min_len(min_len)
+            .map(f)
+            .collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        let _ = min_len;
+        (0..n).map(f).collect()
+    }
+}
+
+/// `(0..n).filter_map(f)`, collected in order.
+pub(crate) fn filter_map_range<T: Send>(
+    n: usize,
+    min_len: usize,
+    f: impl Fn(usize) -> Option<T> + Sync + Send,
+) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..n)
+            .into_par_iter()
+            .with_min_len(min_len)
+            .filter_map(f)
+            .collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        let _ = min_len;
+        (0..n).filter_map(f).collect()
+    }
+}

@@ -46,6 +46,10 @@ enum Command {
         /// points and the subdivision engine otherwise.
         #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
         engine: EngineArg,
+        /// Give every edge of the incremental engine its exact bisector: `bisector`,
+        /// pieces in Held's offset-parameter form with their clearance ranges.
+        #[arg(long)]
+        bisectors: bool,
     },
     /// Offset curves (lines and arcs) at a distance from the sites, derived from the
     /// diagram (in `complex` mode for a `voronoi` scene; inside the region in
@@ -124,6 +128,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             max_box,
             threads,
             engine,
+            bisectors,
         } => {
             if json.is_none() && svg.is_none() {
                 bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
@@ -138,6 +143,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 engine: engine.into(),
                 max_box,
                 parallel: threads != Some(1),
+                bisectors,
                 ..Default::default()
             };
             let out = gvd::compute_with_boxes(&sc, &options)

@@ -232,3 +232,41 @@ fn output_through_a_symlink_replaces_the_target() {
         .unwrap()
         .starts_with("<svg"));
 }
+
+/// `--bisectors` adds each edge's exact bisector to the JSON (and only when asked).
+#[test]
+fn bisectors_flag_adds_offset_forms() {
+    let scene = repo("examples/scenes/slot-pocket.json");
+    let json = scratch("slot-bisectors.json");
+    for (flag, expected) in [(false, false), (true, true)] {
+        let mut cmd = gvd();
+        cmd.args([
+            "compute",
+            scene.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        if flag {
+            cmd.arg("--bisectors");
+        }
+        let out = cmd.output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let d: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let with = d["edges"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|e| e.get("bisector").is_some())
+            .count();
+        assert_eq!(
+            with > 0,
+            expected,
+            "--bisectors {flag}: {with} edges with a bisector"
+        );
+    }
+}

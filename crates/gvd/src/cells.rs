@@ -560,6 +560,7 @@ mod tests {
         Edge {
             sites: sites.map(Generator::Site),
             from: ends[0],
+            bisector: Vec::new(),
             to: ends[1],
             points: (0..n)
                 .map(|i| a.lerp(b, i as f64 / (n - 1) as f64))
@@ -762,6 +763,7 @@ mod tests {
             .map(|(s, points)| Edge {
                 sites: s.map(Generator::Site),
                 from: None,
+                bisector: Vec::new(),
                 to: None,
                 points,
             })

@@ -53,6 +53,41 @@ pub struct Edge {
     pub from: Option<usize>,
     pub to: Option<usize>,
     pub points: Vec<Point>,
+    /// The exact bisector under `points`, piece by piece in their order (empty when not
+    /// asked for, or when a piece has constant clearance; see [`BisectorPiece`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bisector: Vec<BisectorPiece>,
+}
+
+/// One piece of an edge's bisector in Held's offset-parameter form (the OpenVoronoi
+/// wiki page in `../shared/papers/`): with `t` the clearance (the distance to both
+/// generators),
+///
+/// x(t) = x1 − x2 − x3·t + sign · x4 · √((x5 + x6·t)² − (x7 + x8·t)²),
+///
+/// and y(t) likewise from `y`, for `t` from `t[0]` (where the piece starts, in the
+/// direction of the edge's `points`) to `t[1]`. Every bisector of points, lines and
+/// circles has this form; a piece ends where the edge changes generators or the root
+/// changes sign (at the apex, the point of least clearance).
+#[derive(Clone, Copy, PartialEq, Debug, Serialize, Deserialize)]
+pub struct BisectorPiece {
+    pub x: [f64; 8],
+    pub y: [f64; 8],
+    /// +1 or −1: the branch of the root.
+    pub sign: i8,
+    pub t: [f64; 2],
+}
+
+impl BisectorPiece {
+    /// The point of clearance `t` (the root clamped at zero against rounding).
+    pub fn at(&self, t: f64) -> Point {
+        let coord = |c: &[f64; 8]| {
+            let (u, v) = (c[4] + c[5] * t, c[6] + c[7] * t);
+            let root = (u * u - v * v).max(0.0).sqrt();
+            c[0] - c[1] - c[2] * t + f64::from(self.sign) * c[3] * root
+        };
+        Point::new(coord(&self.x), coord(&self.y))
+    }
 }
 
 /// A site's cell clipped to the domain, as closed rings (last point not repeated).

@@ -38,6 +38,9 @@ pub struct Options {
     pub parallel: bool,
     /// Choices among equivalent distance fields (closed forms or the general paths).
     pub fields: FieldOptions,
+    /// Give every edge of the incremental engine its exact bisector in
+    /// offset-parameter form ([`crate::complex::Edge::bisector`]).
+    pub bisectors: bool,
 }
 
 impl Default for Options {
@@ -47,6 +50,7 @@ impl Default for Options {
             max_box: None,
             parallel: cfg!(feature = "parallel"),
             fields: FieldOptions::default(),
+            bisectors: false,
         }
     }
 }
@@ -82,11 +86,16 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
                         .stats
                         .insert("cells_from_edges".into(), serde_json::json!(true));
                 }
+                if options.bisectors {
+                    incremental::add_point_bisectors(&mut complex, &points, scene.domain);
+                }
                 Ok(complex)
             });
         }
         (Engine::Auto | Engine::Incremental, None) if incremental::linear::supports(scene) => {
-            return timed_incremental(|| incremental::linear::linear_voronoi(scene));
+            return timed_incremental(|| {
+                incremental::linear::linear_voronoi(scene, options.bisectors)
+            });
         }
         (Engine::Incremental, None) => {
             let (site, kind) = scene

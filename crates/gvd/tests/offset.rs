@@ -296,6 +296,7 @@ fn diagram_edge(sites: [Generator; 2], points: Vec<Point>) -> Edge {
     Edge {
         sites,
         from: None,
+        bisector: Vec::new(),
         to: None,
         points,
     }

@@ -247,30 +247,35 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
             Edge {
                 sites: [edge_gen(0, 0), edge_gen(0, 2)],
                 from: Some(0),
+                bisector: Vec::new(),
                 to: Some(1),
                 points: vec![v0, v1],
             },
             Edge {
                 sites: [edge_gen(0, 0), edge_gen(0, 3)],
                 from: None,
+                bisector: Vec::new(),
                 to: Some(0),
                 points: vec![p(-1.0, -0.5), v0],
             },
             Edge {
                 sites: [edge_gen(0, 2), edge_gen(0, 3)],
                 from: None,
+                bisector: Vec::new(),
                 to: Some(0),
                 points: vec![p(-1.0, 0.5), v0],
             },
             Edge {
                 sites: [edge_gen(0, 0), edge_gen(0, 1)],
                 from: None,
+                bisector: Vec::new(),
                 to: Some(1),
                 points: vec![p(1.0, -0.5), v1],
             },
             Edge {
                 sites: [edge_gen(0, 1), edge_gen(0, 2)],
                 from: None,
+                bisector: Vec::new(),
                 to: Some(1),
                 points: vec![p(1.0, 0.5), v1],
             },
@@ -311,6 +316,7 @@ fn medial_axis_outside_the_region_and_zone_boundaries_fail() {
         edges: vec![Edge {
             sites: [corner(0, 1), edge_gen(0, 0)],
             from: None,
+            bisector: Vec::new(),
             to: None,
             points: vec![Point::new(1.0, -0.5), Point::new(1.0, -1.0)],
         }],

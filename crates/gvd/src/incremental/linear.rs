@@ -15,10 +15,11 @@
 //!   site) and kept only there in `medial_axis` mode. Everything is clipped to the
 //!   domain.
 
+use super::offset_form::{self, OffsetGen};
 use super::segments::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
 };
-use crate::complex::{Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
+use crate::complex::{BisectorPiece, Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
@@ -213,6 +214,59 @@ impl Generators {
         }
     }
 
+    /// Generator `gen` grown towards `side`; `None` for a far (frame) point.
+    fn offset_gen(&self, gen: Gen, side: Point) -> Option<OffsetGen> {
+        match gen {
+            Gen::Point(p) => self.points.get(p as usize).map(|&c| OffsetGen::point(c)),
+            Gen::Segment(s) => {
+                let [a, b] = self.segments[s as usize].map(|p| self.points[p as usize]);
+                OffsetGen::line(a, b, side)
+            }
+            Gen::Arc(a) => {
+                let arc = &self.arcs[a as usize];
+                Some(OffsetGen::circle(arc.c, arc.r, side))
+            }
+        }
+    }
+
+    /// The exact bisector under `piece`, a clipped part of a chain whose segment `j`
+    /// lies on the chain's segment `first + j`: stretch by stretch, in order. Empty
+    /// when some stretch has no offset form (constant clearance).
+    fn bisector(
+        &self,
+        piece: &[Point],
+        first: usize,
+        stretches: &[Stretch],
+        tol: f64,
+    ) -> Vec<BisectorPiece> {
+        let segments = piece.len() - 1;
+        let mut out = Vec::new();
+        for (k, st) in stretches.iter().enumerate() {
+            let end = stretches.get(k + 1).map_or(usize::MAX, |n| n.start);
+            // This stretch's segments of the piece: j with start <= first + j < end.
+            let lo = st.start.saturating_sub(first);
+            let hi = end.saturating_sub(first).min(segments);
+            if lo >= hi {
+                continue;
+            }
+            let pts = &piece[lo..=hi];
+            // A point off both generators tells the side each one grows towards.
+            let mid = if pts.len() == 2 {
+                pts[0].lerp(pts[1], 0.5)
+            } else {
+                pts[pts.len() / 2]
+            };
+            let [Some(a), Some(b)] = st.gens.map(|g| self.offset_gen(g, mid)) else {
+                return Vec::new();
+            };
+            match offset_form::pieces(a, b, pts, tol) {
+                Some(p) => out.extend(p),
+                None => return Vec::new(),
+            }
+        }
+        out
+    }
+
     /// Whether `a` and `b` are a segment and one of its own ends.
     fn is_separator(&self, a: Gen, b: Gen) -> bool {
         match (a, b) {
@@ -342,8 +396,10 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
     }
 }
 
-/// The diagram of a scene of Euclidean points, segments, polylines and polygons.
-pub fn linear_voronoi(scene: &Scene) -> Result<VoronoiComplex, Error> {
+/// The diagram of a scene of Euclidean points, segments, arcs, polylines and polygons;
+/// with `bisectors`, every edge also carries its exact bisector in offset-parameter
+/// form ([`Edge::bisector`]).
+pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, Error> {
     let g = Generators::of(scene);
     if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely) {
         return Err(conflict_error(&g, c));
@@ -357,15 +413,31 @@ pub fn linear_voronoi(scene: &Scene) -> Result<VoronoiComplex, Error> {
     let overrides = diagram.overrides;
     // The graph is no longer needed: free it before the output is assembled.
     drop(diagram);
-    let mut complex = assemble(&g, scene, vertices, edges);
+    let mut complex = assemble(&g, scene, vertices, edges, bisectors);
     complex
         .stats
         .insert("topology_overrides".into(), serde_json::json!(overrides));
     Ok(complex)
 }
 
-/// An output edge before clipping: points, end vertices (`None` for a loop), labels.
-type Chain = (Vec<Point>, Option<usize>, Option<usize>, [Generator; 2]);
+/// An output edge before clipping: points, end vertices (`None` for a loop), labels,
+/// and its stretches (see [`Stretch`]).
+type Chain = (
+    Vec<Point>,
+    Option<usize>,
+    Option<usize>,
+    [Generator; 2],
+    Vec<Stretch>,
+);
+
+/// The part of a chain that one raw edge contributed: from the chain's segment `start`
+/// (between points `start` and `start + 1`) to the next stretch's, on the bisector of
+/// `gens`.
+#[derive(Clone, Copy)]
+struct Stretch {
+    start: usize,
+    gens: [Gen; 2],
+}
 
 /// Union–find with path halving.
 fn find(parent: &mut [usize], mut v: usize) -> usize {
@@ -379,6 +451,7 @@ fn find(parent: &mut [usize], mut v: usize) -> usize {
 /// A raw edge kept for the output, its ends merged across zero-length edges.
 struct Kept {
     sites: [Generator; 2],
+    gens: [Gen; 2],
     ends: [usize; 2],
     points: Vec<Point>,
 }
@@ -480,6 +553,7 @@ fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
     // closed a loop.
     let walk = |start_edge: usize, from: usize, kept: &mut [Kept], used: &mut [bool]| {
         let mut points: Vec<Point> = Vec::new();
+        let mut stretches: Vec<Stretch> = Vec::new();
         let (mut e, mut v) = (start_edge, from);
         loop {
             used[e] = true;
@@ -489,6 +563,10 @@ fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
             if !forward {
                 pts.reverse();
             }
+            stretches.push(Stretch {
+                start: points.len().saturating_sub(1),
+                gens: ed.gens,
+            });
             if points.is_empty() {
                 points = pts;
             } else {
@@ -496,11 +574,11 @@ fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
             }
             v = if forward { ed.ends[1] } else { ed.ends[0] };
             if is_node(v) {
-                return (points, v, false);
+                return (points, stretches, v, false);
             }
             match incident.around(v).iter().find(|&&k| !used[k]) {
                 Some(&k) => e = k,
-                None => return (points, v, true), // closed loop
+                None => return (points, stretches, v, true), // closed loop
             }
         }
     };
@@ -512,20 +590,20 @@ fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
             if used[k] {
                 continue;
             }
-            let (points, end, _) = walk(k, v, &mut kept, &mut used);
-            chains.push((points, Some(v), Some(end), kept[k].sites));
+            let (points, stretches, end, _) = walk(k, v, &mut kept, &mut used);
+            chains.push((points, Some(v), Some(end), kept[k].sites, stretches));
         }
     }
     for k in 0..kept.len() {
         if !used[k] {
             let start = kept[k].ends[0];
-            let (mut points, _, _) = walk(k, start, &mut kept, &mut used);
+            let (mut points, stretches, _, _) = walk(k, start, &mut kept, &mut used);
             if points.first() != points.last() {
                 if let Some(&p) = points.first() {
                     points.push(p);
                 }
             }
-            chains.push((points, None, None, kept[k].sites));
+            chains.push((points, None, None, kept[k].sites, stretches));
         }
     }
     chains
@@ -536,6 +614,7 @@ fn assemble(
     scene: &Scene,
     raw_vertices: Vec<super::segments::RawVertex>,
     raw_edges: Vec<super::segments::RawEdge>,
+    bisectors: bool,
 ) -> VoronoiComplex {
     let mode = scene.mode;
     let nv = raw_vertices.len();
@@ -560,6 +639,7 @@ fn assemble(
         let ends = e.ends.map(|v| find(&mut parent, v));
         kept.push(Kept {
             sites: [la, lb],
+            gens: e.gens,
             ends,
             points: e.points,
         });
@@ -595,7 +675,7 @@ fn assemble(
     };
     // Pulled, kept by the insides, clipped: chain by chain (in parallel), then numbered
     // in order.
-    let clip = |(mut points, from, to, sites): Chain| {
+    let clip = |(mut points, from, to, sites, stretches): Chain| {
         if from.is_some_and(|v| raw_vertices[v].t <= hair) {
             pull(&mut points, true);
         }
@@ -604,8 +684,20 @@ fn assemble(
         }
         let mid = (points.len() - 1) / 2;
         let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
-        (inside == (mode == Mode::MedialAxis))
-            .then(|| (clip_polyline(&points, &domain), from, to, sites))
+        (inside == (mode == Mode::MedialAxis)).then(|| {
+            let pieces = clip_polyline(&points, &domain)
+                .into_iter()
+                .map(|(piece, start_cut, end_cut, first)| {
+                    let form = if bisectors {
+                        g.bisector(&piece, first, &stretches, hair)
+                    } else {
+                        Vec::new()
+                    };
+                    (piece, start_cut, end_cut, form)
+                })
+                .collect::<Vec<_>>();
+            (pieces, from, to, sites)
+        })
     };
     #[cfg(feature = "parallel")]
     let clipped: Vec<_> = {
@@ -620,7 +712,7 @@ fn assemble(
     let clipped: Vec<_> = chains.into_iter().map(clip).collect();
     for (pieces, from, to, sites) in clipped.into_iter().flatten() {
         let closed_loop = from.is_none();
-        for (piece, start_cut, end_cut) in pieces {
+        for (piece, start_cut, end_cut, bisector) in pieces {
             let from = if start_cut || closed_loop {
                 None
             } else {
@@ -636,6 +728,7 @@ fn assemble(
                 from,
                 to,
                 points: piece,
+                bisector,
             });
         }
     }
@@ -643,32 +736,33 @@ fn assemble(
 }
 
 /// The pieces of a polyline inside the closed box `b`, each with whether its start and
-/// its end were cut by the box.
-fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool)> {
+/// its end were cut by the box, and the index of the polyline's segment it starts on
+/// (its segment `j` lies on the polyline's segment `first + j`).
+fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool, usize)> {
     let mut pieces = Vec::new();
     let mut cur: Vec<Point> = Vec::new();
-    let mut cur_cut = false;
-    for w in points.windows(2) {
+    let (mut cur_cut, mut cur_first) = (false, 0);
+    for (k, w) in points.windows(2).enumerate() {
         let Some((t0, t1)) = clip_range(w[0], w[1], b) else {
             if !cur.is_empty() {
-                pieces.push((std::mem::take(&mut cur), cur_cut, true));
+                pieces.push((std::mem::take(&mut cur), cur_cut, true, cur_first));
             }
             continue;
         };
         let (p0, p1) = (w[0].lerp(w[1], t0), w[0].lerp(w[1], t1));
         if cur.is_empty() {
             cur.push(b.clamp(p0));
-            cur_cut = t0 > 0.0;
+            (cur_cut, cur_first) = (t0 > 0.0, k);
         }
         cur.push(b.clamp(p1));
         if t1 < 1.0 {
-            pieces.push((std::mem::take(&mut cur), cur_cut, true));
+            pieces.push((std::mem::take(&mut cur), cur_cut, true, cur_first));
         }
     }
     if cur.len() >= 2 {
-        pieces.push((cur, cur_cut, false));
+        pieces.push((cur, cur_cut, false, cur_first));
     }
-    pieces.retain(|(p, _, _)| p.len() >= 2);
+    pieces.retain(|(p, ..)| p.len() >= 2);
     pieces
 }
 

@@ -28,6 +28,7 @@ mod cells;
 mod graph;
 mod insert;
 pub mod linear;
+mod offset_form;
 mod order;
 mod output;
 mod predicates;
@@ -281,4 +282,20 @@ impl PointDiagram {
 ///   of smaller index has no cell.
 pub fn points_voronoi(points: &[Point], domain: Aabb) -> Result<VoronoiComplex, Error> {
     Ok(PointDiagram::new(points, domain)?.to_complex())
+}
+
+/// Gives every edge of `c`, a diagram of `points`, its bisector in offset-parameter
+/// form ([`crate::complex::Edge::bisector`]): one piece, or two split at the midpoint
+/// of the two sites.
+pub fn add_point_bisectors(c: &mut VoronoiComplex, points: &[Point], domain: Aabb) {
+    use offset_form::OffsetGen;
+    let tol = 1e-12 * domain.longest_side();
+    let forms = crate::par::map_range(c.edges.len(), 1 << 10, |k| {
+        let e = &c.edges[k];
+        let [a, b] = e.sites.map(|g| OffsetGen::point(points[g.site()]));
+        offset_form::pieces(a, b, &e.points, tol).unwrap_or_default()
+    });
+    for (e, form) in c.edges.iter_mut().zip(forms) {
+        e.bisector = form;
+    }
 }

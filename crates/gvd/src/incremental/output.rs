@@ -132,6 +132,7 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
             from,
             to,
             points: vec![start * inv, end * inv],
+            bisector: Vec::new(),
         })
     });
 

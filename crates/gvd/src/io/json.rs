@@ -106,6 +106,7 @@ mod tests {
             edges: vec![Edge {
                 sites: [Generator::Site(0), Generator::Site(3)],
                 from: Some(0),
+                bisector: Vec::new(),
                 to: None,
                 points: vec![Point::new(0.1, -0.2), Point::new(1.0 / 3.0, 2.0)],
             }],
@@ -148,6 +149,7 @@ mod tests {
                 d.edges.push(Edge {
                     sites: [Generator::Site(i), Generator::Site(i + 2)],
                     from: Some(i),
+                    bisector: Vec::new(),
                     to: None,
                     points: vec![p, Point::new(0.5, 1e-300)],
                 });

@@ -469,12 +469,14 @@ mod tests {
                 Edge {
                     sites: [g(0), g(1)],
                     from: Some(0),
+                    bisector: Vec::new(),
                     to: None,
                     points: vec![p(0.0, 0.0), p(0.1, -0.5), p(0.0, -1.0)],
                 },
                 Edge {
                     sites: [g(0), g(2)],
                     from: Some(0),
+                    bisector: Vec::new(),
                     to: None,
                     points: vec![p(0.0, 0.0), p(-2.0, 1.0)],
                 },

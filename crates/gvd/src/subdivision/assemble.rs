@@ -211,6 +211,7 @@ fn build_complex(
             from: ends[0],
             to: ends[1],
             points,
+            bisector: Vec::new(),
         });
     }
     out

@@ -34,6 +34,7 @@ fn edge(a: usize, b: usize, from: Option<usize>, to: Option<usize>, pts: &[Point
     Edge {
         sites: [Generator::Site(a), Generator::Site(b)],
         from,
+        bisector: Vec::new(),
         to,
         points: pts.to_vec(),
     }

@@ -1,4 +1,4 @@
-//! Brute-force distances of points, segments, polylines and polygons, computed
+//! Brute-force distances of points, segments, arcs, polylines and polygons, computed
 //! directly from the scene's definitions (no code shared with the engines), for the
 //! integration tests of the incremental engine.
 #![allow(dead_code)] // each test file uses its own subset
@@ -53,8 +53,43 @@ pub fn inside_polygon(q: Point, rings: &[Vec<Point>]) -> bool {
     inside
 }
 
+/// The ends of the arc of centre `c` and radius `r` from angle `start` to `end`.
+pub fn arc_ends(c: Point, r: f64, start: f64, end: f64) -> [Point; 2] {
+    [start, end].map(|a| c + Point::new(a.cos(), a.sin()) * r)
+}
+
+/// The distance from `q` to that arc, counter-clockwise from `start` to `end`: to its
+/// circle where the ray from `c` through `q` meets the arc, else to the nearer end.
+pub fn arc_dist(q: Point, c: Point, r: f64, start: f64, end: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let span = (end - start).rem_euclid(tau);
+    let angle = ((q.y - c.y).atan2(q.x - c.x) - start).rem_euclid(tau);
+    if angle <= span {
+        (q.dist(c) - r).abs()
+    } else {
+        let [a, b] = arc_ends(c, r, start, end);
+        q.dist(a).min(q.dist(b))
+    }
+}
+
 /// The distance from `q` to generator `g` of the scene.
 pub fn dist(s: &Scene, g: &Generator, q: Point) -> f64 {
+    if let SiteKind::Arc {
+        center,
+        radius,
+        start_angle,
+        end_angle,
+    } = s.sites[g.site()].kind
+    {
+        return match *g {
+            Generator::Feature {
+                feature: FeatureKind::Corner,
+                index,
+                ..
+            } => q.dist(arc_ends(center, radius, start_angle, end_angle)[index]),
+            _ => arc_dist(q, center, radius, start_angle, end_angle),
+        };
+    }
     match *g {
         Generator::Site(i) => {
             let kind = &s.sites[i].kind;

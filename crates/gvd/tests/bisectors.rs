@@ -1,0 +1,184 @@
+//! The exact bisectors the incremental engine gives its edges (`--bisectors`), checked
+//! against brute-force distances to the edge's two generators and against the edge's
+//! own polyline, on points, segments, polygons (every mode) and arcs.
+
+mod common;
+
+use gvd::complex::{Edge, VoronoiComplex};
+use gvd::geom::Point;
+use gvd::{Engine, Options, Scene};
+use std::path::Path;
+
+fn scene(rel: &str) -> Scene {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let path = [
+        root.join("tests/data/scenes").join(rel),
+        root.join("../..").join(rel),
+    ]
+    .into_iter()
+    .find(|p| p.exists())
+    .unwrap_or_else(|| panic!("no scene {rel}"));
+    Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn with_bisectors(s: &Scene) -> VoronoiComplex {
+    let options = Options {
+        engine: Engine::Incremental,
+        bisectors: true,
+        ..Default::default()
+    };
+    gvd::compute(s, &options).unwrap()
+}
+
+/// The distance from `q` to the polyline `points`.
+fn polyline_dist(q: Point, points: &[Point]) -> f64 {
+    points
+        .windows(2)
+        .map(|w| common::seg_dist(q, w[0], w[1]))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Checks every edge: its pieces join up from the first point of its polyline to the
+/// last; each piece's points at sampled clearances t are at distance t from both
+/// generators and within epsilon of the polyline. An edge without pieces must have
+/// constant clearance (parallel segments, concentric arcs). Returns the number of
+/// edges with pieces.
+fn check(name: &str, s: &Scene, d: &VoronoiComplex) -> usize {
+    let scale = s.domain.longest_side();
+    let tol = 1e-9 * scale;
+    let mut with = 0;
+    for (k, e) in d.edges.iter().enumerate() {
+        let Edge {
+            sites,
+            points,
+            bisector,
+            ..
+        } = e;
+        let clearance = |q: Point| sites.map(|g| common::dist(s, &g, q));
+        if bisector.is_empty() {
+            let t0 = clearance(points[0])[0];
+            for &q in points {
+                let [a, b] = clearance(q);
+                assert!(
+                    (a - t0).abs() <= 1e-6 * scale && (b - t0).abs() <= 1e-6 * scale,
+                    "{name}: edge {k} {sites:?} has no bisector but its clearance varies"
+                );
+            }
+            continue;
+        }
+        with += 1;
+        let (first, last) = (bisector[0], bisector[bisector.len() - 1]);
+        let ends = [first.at(first.t[0]), last.at(last.t[1])];
+        let near = |p: Point, q: Point| p.dist(q) <= 1e-7 * scale;
+        // An end at a vertex is on the curve; an end cut by the domain is on a chord
+        // of the polyline, within epsilon of it.
+        let end_ok = |form: Point, end: Point, vertex: Option<usize>| {
+            form.dist(end)
+                <= if vertex.is_some() {
+                    1e-7 * scale
+                } else {
+                    s.epsilon
+                }
+        };
+        assert!(
+            end_ok(ends[0], points[0], e.from) && end_ok(ends[1], points[points.len() - 1], e.to),
+            "{name}: edge {k} {sites:?}: pieces run {ends:?}, the polyline {:?} to {:?}",
+            points[0],
+            points[points.len() - 1]
+        );
+        for w in bisector.windows(2) {
+            assert!(
+                near(w[0].at(w[0].t[1]), w[1].at(w[1].t[0])),
+                "{name}: edge {k}: pieces do not join"
+            );
+        }
+        for piece in bisector {
+            assert!(piece.sign == 1 || piece.sign == -1);
+            for i in 0..=8 {
+                let t = piece.t[0] + (piece.t[1] - piece.t[0]) * i as f64 / 8.0;
+                let q = piece.at(t);
+                for (g, d) in sites.iter().zip(clearance(q)) {
+                    assert!(
+                        (d - t).abs() <= tol + 1e-9 * t.abs(),
+                        "{name}: edge {k}: at t = {t} the point {q:?} is {d} from {g:?}"
+                    );
+                }
+                let off = polyline_dist(q, points);
+                assert!(
+                    off <= s.epsilon,
+                    "{name}: edge {k}: at t = {t} the form is {off} from the polyline (epsilon {})",
+                    s.epsilon
+                );
+            }
+        }
+    }
+    with
+}
+
+#[test]
+fn point_edges_follow_their_bisectors() {
+    for name in [
+        "points-euclidean-0100.json",
+        "degenerate-grid-4x4.json",
+        "degenerate-cocircular-12-center.json",
+        "degenerate-collinear-20.json",
+    ] {
+        let s = scene(name);
+        let d = with_bisectors(&s);
+        // Every point–point bisector has a form.
+        assert_eq!(check(name, &s, &d), d.edges.len(), "{name}");
+        // An edge that passes the midpoint of its two sites splits there.
+        let split = d.edges.iter().filter(|e| e.bisector.len() == 2).count();
+        assert!(split > 0, "{name}: no edge passes its sites' midpoint");
+    }
+}
+
+#[test]
+fn segment_and_polygon_edges_follow_their_bisectors() {
+    for name in [
+        "segments-0200.json",
+        "segments-near-touching-9.json",
+        "degenerate-triangle-segments.json",
+        "degenerate-triangle-polyline-complex.json",
+        "polyline-zigzag-complex.json",
+        "polyline-zigzag-points-voronoi.json",
+        "polygons-convex5-voronoi.json",
+        "polygons-convex5-complex.json",
+        "polygons-convex5-medial_axis.json",
+        "polygon-star50-complex.json",
+        "polygon-holes2-medial_axis.json",
+        "polygon-bugtrap-medial_axis.json",
+    ] {
+        let s = scene(name);
+        let d = with_bisectors(&s);
+        let with = check(name, &s, &d);
+        assert!(with > 0, "{name}: no edge has a bisector");
+    }
+}
+
+#[test]
+fn arc_edges_follow_their_bisectors() {
+    for name in [
+        "arcs-0030-points-0020.json",
+        "arcs-0030-points-0020-complex.json",
+        "examples/scenes/slot-pocket.json",
+    ] {
+        let s = scene(name);
+        let d = with_bisectors(&s);
+        let with = check(name, &s, &d);
+        assert!(with > 0, "{name}: no edge has a bisector");
+    }
+}
+
+#[test]
+fn bisectors_are_only_given_when_asked() {
+    let s = scene("segments-0200.json");
+    let d = gvd::compute(&s, &Options::default()).unwrap();
+    assert!(d.edges.iter().all(|e| e.bisector.is_empty()));
+    let json = gvd::io::json::write_diagram(&d);
+    assert!(!json.contains("bisector"));
+    let d = with_bisectors(&s);
+    let json = gvd::io::json::write_diagram(&d);
+    let back = gvd::io::json::read_diagram(&json).unwrap();
+    assert_eq!(back.edges[0].bisector, d.edges[0].bisector);
+}

@@ -102,23 +102,13 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
                 .sites
                 .iter()
                 .enumerate()
-                .find(|(_, s)| {
-                    !matches!(
-                        s.kind,
-                        SiteKind::Point {
-                            metric: Metric::Euclidean,
-                            ..
-                        } | SiteKind::Segment { .. }
-                            | SiteKind::Polyline { .. }
-                            | SiteKind::Polygon { .. }
-                    )
-                })
+                .find(|(_, s)| !incremental::linear::supports_site(&s.kind))
                 .map(|(i, s)| (i, s.kind.name().to_string()))
                 .unwrap_or((0, "point".into()));
             return Err(Error::Unsupported {
                 site,
                 kind,
-                message: "the incremental engine computes Euclidean points, segments, polylines and polygons (so far)".into(),
+                message: "the incremental engine computes Euclidean points, segments, arcs short of a full circle, polylines and polygons (so far)".into(),
             });
         }
         _ => {}

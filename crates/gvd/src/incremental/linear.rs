@@ -28,7 +28,12 @@ use std::collections::HashMap;
 /// Whether every site is a Euclidean point, a segment, an arc short of a full circle, a
 /// polyline or a polygon.
 pub fn supports(scene: &Scene) -> bool {
-    scene.sites.iter().all(|s| match &s.kind {
+    scene.sites.iter().all(|s| supports_site(&s.kind))
+}
+
+/// Whether a site of this kind goes through the segment engine.
+pub fn supports_site(kind: &SiteKind) -> bool {
+    match kind {
         SiteKind::Arc {
             start_angle,
             end_angle,
@@ -43,7 +48,7 @@ pub fn supports(scene: &Scene) -> bool {
                 | SiteKind::Polyline { .. }
                 | SiteKind::Polygon { .. }
         ),
-    })
+    }
 }
 
 /// The counter-clockwise span from `start` to `end` in `(0, 2π)`, or `None` for a full

@@ -16,6 +16,7 @@
 //!   domain.
 
 use super::offset_form::{self, OffsetGen};
+use super::rescale;
 use super::segments::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
 };
@@ -405,6 +406,11 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
 /// with `bisectors`, every edge also carries its exact bisector in offset-parameter
 /// form ([`Edge::bisector`]).
 pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, Error> {
+    if let Some(s) = rescale::factor(scene) {
+        let mut c = linear_voronoi(&rescale::scene(scene, s), bisectors)?;
+        rescale::unscale(&mut c, s);
+        return Ok(c);
+    }
     let g = Generators::of(scene);
     if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely) {
         return Err(conflict_error(&g, c));

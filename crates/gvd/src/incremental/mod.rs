@@ -32,6 +32,7 @@ mod offset_form;
 mod order;
 mod output;
 mod predicates;
+pub(crate) mod rescale;
 mod segments;
 
 use crate::complex::VoronoiComplex;

@@ -6,8 +6,21 @@ use crate::geom::Point;
 use std::cmp::Ordering;
 
 /// The sign of the orientation of `(a, b, c)`: `Greater` when counter-clockwise (exact).
+/// Coordinates beyond `2^±400` are first scaled by a power of two (exact) to about 1,
+/// where the predicate's products neither overflow nor underflow.
 fn orient(a: Point, b: Point, c: Point) -> Ordering {
-    let k = |p: Point| robust::Coord { x: p.x, y: p.y };
+    let m = [a, b, c]
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let s = if m == 0.0 || (m > 2f64.powi(-400) && m < 2f64.powi(400)) {
+        1.0
+    } else {
+        2f64.powi(-(m.log2().ceil() as i32))
+    };
+    let k = |p: Point| robust::Coord {
+        x: p.x * s,
+        y: p.y * s,
+    };
     robust::orient2d(k(a), k(b), k(c))
         .partial_cmp(&0.0)
         .unwrap_or(Ordering::Equal)

@@ -50,6 +50,7 @@ mod region;
 use crate::complex::{Generator, VoronoiComplex};
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
+use crate::incremental::rescale;
 use crate::par::map_range;
 use crate::scene::{Mode, Scene};
 use field::Field;
@@ -128,6 +129,17 @@ pub fn verify(
     diagram: &VoronoiComplex,
     opts: &VerifyOptions,
 ) -> Result<Report, Error> {
+    // Euclidean scenes beyond 2^±200 are checked at a power-of-two scale near 1 (exact),
+    // where squared distances neither overflow nor underflow.
+    if crate::incremental::linear::supports(scene) {
+        if let Some(s) = rescale::factor(scene) {
+            let mut scaled = diagram.clone();
+            rescale::unscale(&mut scaled, 1.0 / s);
+            let mut report = verify(&rescale::scene(scene, s), &scaled, opts)?;
+            report.worst_edge_error /= s;
+            return Ok(report);
+        }
+    }
     let gens = Gens::new(scene)?;
     let ck = Checker::new(scene, &gens, diagram, opts);
     Ok(ck.run())
@@ -528,7 +540,9 @@ impl<'a> Checker<'a> {
         for (g, ge) in self.edges.iter().enumerate() {
             let pts = &self.diagram.edges[ge.index].points;
             for w in pts.windows(2) {
-                let n = ((w[1].dist(w[0]) / spacing).ceil() as usize).max(1);
+                // At most 2^16 samples a chord: a length that overflows (coordinates
+                // near f64's range) or a bogus diagram must not exhaust memory.
+                let n = ((w[1].dist(w[0]) / spacing).ceil() as usize).clamp(1, 1 << 16);
                 samples.extend((0..n).map(|j| (w[0].lerp(w[1], j as f64 / n as f64), g)));
             }
             samples.push((pts[pts.len() - 1], g));
@@ -815,7 +829,7 @@ impl<'a> Checker<'a> {
         for ge in &self.edges {
             let key = (ge.a.min(ge.b), ge.a.max(ge.b));
             for w in self.diagram.edges[ge.index].points.windows(2) {
-                let m = ((w[1].dist(w[0]) / r).ceil() as usize).max(1);
+                let m = ((w[1].dist(w[0]) / r).ceil() as usize).clamp(1, 1 << 16);
                 pieces.extend((0..m).map(|j| {
                     let t = |j: usize| j as f64 / m as f64;
                     (w[0].lerp(w[1], t(j)), w[0].lerp(w[1], t(j + 1)), key)

@@ -22,13 +22,13 @@
 //! * a brute-force completeness check (grid 64): neighbouring grid points nearest to
 //!   different generators need an edge labelled with both nearby, unless they tie over
 //!   a region (sites sharing an end at an angle), a third generator is close, or the
-//!   pair is a corner and an edge or piece ending there (a separator). Scenes with
-//!   tangent joints (rounded rectangles, stadiums) are checked without it (known
-//!   failure, `tangent_joints_complete`).
+//!   pair is a corner and an edge or piece ending there (a separator). At a tangent
+//!   (G1) joint (rounded rectangles, stadiums) the joint's face has zero area and the
+//!   common normal is an edge between the two features; it was once missing
+//!   (`failing/arc-tangent-segment.json`, `failing/two-arcs-tangent-joint.json`).
 //!
-//! Known failures (scenes under `tests/data/scenes/arcs/failing/`, tests marked
-//! `#[ignore]`): tangent (G1) joints (the joint's face has zero area and the edge along
-//! the common normal is missing), and one arc with a point deep inside its circle.
+//! Known failure (scene under `tests/data/scenes/arcs/failing/`, test marked
+//! `#[ignore]`): one arc with a point deep inside its circle.
 //! The half circle closed by its diameter once failed (both ends of its edge lie on
 //! the sites, so the residuals did not decide the conic's branch; now the piece of
 //! smaller clearance is taken). Scenes where an arc's cell reached the far generators
@@ -497,16 +497,6 @@ fn incremental(s: &Scene) -> Result<VoronoiComplex, Error> {
 
 /// Every check of the module doc on one scene; the scene's JSON is in the message.
 fn check_value(v: &Value) -> Result<(), String> {
-    check_with(v, true)
-}
-
-/// Soundness and structure only (for the scenes with tangent joints, whose missing
-/// edges are a known failure: see `failing_tangent_joint_edges`).
-fn check_sound(v: &Value) -> Result<(), String> {
-    check_with(v, false)
-}
-
-fn check_with(v: &Value, completeness: bool) -> Result<(), String> {
     let s = scene_of(v);
     let ctx = || serde_json::to_string(v).unwrap();
     let d = incremental(&s).map_err(|e| format!("refused: {e} (scene {})", ctx()))?;
@@ -521,7 +511,7 @@ fn check_with(v: &Value, completeness: bool) -> Result<(), String> {
             ctx()
         ));
     }
-    if let Some(m) = missing_edge(&s, &d, 64).filter(|_| completeness) {
+    if let Some(m) = missing_edge(&s, &d, 64) {
         return Err(format!("completeness: {m} (scene {})", ctx()));
     }
     Ok(())
@@ -899,16 +889,12 @@ fn fixed_scenes() -> Vec<(&'static str, Value)> {
 }
 
 fn check_fixed(prefix: &str) {
-    check_fixed_with(prefix, check_value)
-}
-
-fn check_fixed_with(prefix: &str, check: fn(&Value) -> Result<(), String>) {
     let mut failures = Vec::new();
     let mut n = 0;
     for (name, v) in fixed_scenes() {
         if name.starts_with(prefix) {
             n += 1;
-            if let Err(e) = check(&v) {
+            if let Err(e) = check_value(&v) {
                 failures.push(format!("{name}: {e}"));
             }
         }
@@ -964,12 +950,12 @@ fn d_shapes() {
 
 #[test]
 fn rounded_rectangles() {
-    check_fixed_with("rounded-rect", check_sound);
+    check_fixed("rounded-rect");
 }
 
 #[test]
 fn stadium() {
-    check_fixed_with("stadium-", check_sound);
+    check_fixed("stadium-");
 }
 
 #[test]
@@ -1476,7 +1462,7 @@ proptest! {
     ) {
         let rho = f * w.min(h);
         let v = rounded_rect_scene(mode, (cx, cy), w, h, rho, &extra);
-        prop_assert!(check_sound(&v).is_ok(), "{}", check_sound(&v).unwrap_err());
+        prop_assert!(check_value(&v).is_ok(), "{}", check_value(&v).unwrap_err());
     }
 
     /// A segment through an inner point of an arc, transverse to it, is a conflict
@@ -1517,24 +1503,18 @@ fn check_failing(name: &str) {
     check_value(&guarded(v)).unwrap();
 }
 
-/// The failing scenes fail (so that a fix shows up as a passing ignored test, and the
-/// ignored tests stay honest), and all but the D pass once guarded.
+/// The failing scene fails (so that a fix shows up as a passing ignored test, and the
+/// ignored test stays honest), and passes once guarded.
 #[test]
 fn known_failures_still_fail_and_pass_guarded() {
-    for name in [
-        "arc-span-2.5-point-inside-deep",
-        "arc-tangent-segment",
-        "two-arcs-tangent-joint",
-    ] {
-        let v = failing(name);
-        assert!(
-            check_value(&v).is_err(),
-            "{name} passes now: un-ignore its test"
-        );
-        let g = check_value(&guarded(v));
-        let guarded_fails = name.contains("tangent");
-        assert_eq!(g.is_err(), guarded_fails, "{name} guarded: {g:?}");
-    }
+    let name = "arc-span-2.5-point-inside-deep";
+    let v = failing(name);
+    assert!(
+        check_value(&v).is_err(),
+        "{name} passes now: un-ignore its test"
+    );
+    let g = check_value(&guarded(v));
+    assert!(g.is_ok(), "{name} guarded: {g:?}");
 }
 
 #[test]
@@ -1584,16 +1564,16 @@ fn failing_two_arcs_big_span() {
 }
 
 /// Tangent (G1) joints between separate sites: the common normal at the joint is an
-/// edge between their cells (a line, not a tie region as at an angled joint), but the
-/// engine leaves it out as two separators.
+/// edge between their cells (a line, not a tie region as at an angled joint), once
+/// left out as two separators: arc [0, π/2] r 1 and segment (1, 0)-(1, -1), edge
+/// Site(0)/Site(1) on y = 0.
 #[test]
-#[ignore = "known failure: no edge along the common normal of a tangent joint: arc [0, π/2] r 1 and segment (1, 0)-(1, -1), missing edge Site(0)/Site(1) on y = 0"]
 fn failing_arc_tangent_segment() {
     check_failing("arc-tangent-segment");
 }
 
+/// Arcs [π/2, π] and [π, 3π/2] of one circle: edge Site(0)/Site(1) on y = 0.
 #[test]
-#[ignore = "known failure: no edge along the common normal of a tangent joint: arcs [π/2, π] and [π, 3π/2] of one circle, missing edge Site(0)/Site(1) on y = 0"]
 fn failing_two_arcs_tangent_joint() {
     check_failing("two-arcs-tangent-joint");
 }
@@ -1605,7 +1585,6 @@ fn failing_arc_segment_angled_joint() {
 
 /// The rounded rectangles and stadiums with the completeness check.
 #[test]
-#[ignore = "known failure: no edges along the common normals of the tangent joints (failing/arc-tangent-segment.json, failing/two-arcs-tangent-joint.json)"]
 fn tangent_joints_complete() {
     check_fixed("rounded-rect");
     check_fixed("stadium-");

@@ -10,11 +10,14 @@
 //!   point site stays a site).
 //! * Edges between a corner and a segment ending there (the zone boundaries, or
 //!   separators) and edges between two parts of one site in `voronoi` mode are left
-//!   out; edges then run through the vertices that join only two labels. Edges inside
+//!   out; edges then run through the vertices that join only two labels, away from
+//!   the sites. At a tangent joint the end's face has zero area: its two sides of
+//!   separators become one edge between the two features (`joints.rs`). Edges inside
 //!   polygons are left out in `voronoi` and `complex` modes (the inside is part of the
 //!   site) and kept only there in `medial_axis` mode. Everything is clipped to the
 //!   domain.
 
+use super::joints;
 use super::segments::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
 };
@@ -467,13 +470,18 @@ impl Incident {
 }
 
 /// Chains the kept edges through the vertices that join two labels and two kept
-/// edges: one chain from every node (a vertex of three or more labels, or not two
-/// kept edges) along each of its unused edges, then the closed loops left. Each
-/// edge's points move into its chain.
-fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
+/// edges, away from the sites: one chain from every node (a vertex of three or more
+/// labels, not two kept edges, or `on_site`, as a tangent joint on its normal) along
+/// each of its unused edges, then the closed loops left. Each edge's points move into
+/// its chain.
+fn chain_edges(
+    mut kept: Vec<Kept>,
+    labels: &Labels,
+    on_site: impl Fn(usize) -> bool,
+) -> Vec<Chain> {
     let nv = labels.len.len();
     let incident = Incident::of(&kept, nv);
-    let is_node = |v: usize| labels.len[v] >= 3 || incident.around(v).len() != 2;
+    let is_node = |v: usize| labels.len[v] >= 3 || incident.around(v).len() != 2 || on_site(v);
     let mut used = vec![false; kept.len()];
     let mut chains: Vec<Chain> = Vec::new();
     // The chain from vertex `from` along `start_edge`, its last vertex, and whether it
@@ -534,16 +542,24 @@ fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
 fn assemble(
     g: &Generators,
     scene: &Scene,
-    raw_vertices: Vec<super::segments::RawVertex>,
-    raw_edges: Vec<super::segments::RawEdge>,
+    mut raw_vertices: Vec<super::segments::RawVertex>,
+    mut raw_edges: Vec<super::segments::RawEdge>,
 ) -> VoronoiComplex {
     let mode = scene.mode;
     let nv = raw_vertices.len();
-    // Vertices joined by zero-length edges are one vertex.
+    let joints = joints::tangent_joints(&g.points, &g.segments, &g.arcs);
+    // Contracting a tip moves edge ends by its length: at most epsilon/8 (tips are
+    // points up to rounding, which grows where the sliver's sides meet a bisector at
+    // a shallow angle far out).
+    let tip_tol = scene.epsilon / 8.0;
+    let tips = joints::collapse(&joints, tip_tol, &mut raw_vertices, &mut raw_edges);
+    // Vertices joined by zero-length edges are one vertex, and so are the vertices
+    // of a tangent joint's tip.
     let mut parent: Vec<usize> = (0..nv).collect();
     let zero = |e: &super::segments::RawEdge| e.points.windows(2).all(|w| w[0] == w[1]);
-    for e in raw_edges.iter().filter(|e| zero(e)) {
-        let (a, b) = (find(&mut parent, e.ends[0]), find(&mut parent, e.ends[1]));
+    let zero_ends = raw_edges.iter().filter(|e| zero(e)).map(|e| e.ends);
+    for [a, b] in zero_ends.chain(tips) {
+        let (a, b) = (find(&mut parent, a), find(&mut parent, b));
         parent[a.max(b)] = a.min(b);
     }
     let labels = Labels::of(g, mode, &raw_vertices, &mut parent);
@@ -558,15 +574,23 @@ fn assemble(
             continue;
         }
         let ends = e.ends.map(|v| find(&mut parent, v));
+        // A merged vertex is at its root: the polyline ends there.
+        let mut points = e.points;
+        let last = points.len() - 1;
+        points[0] = raw_vertices[ends[0]].at;
+        points[last] = raw_vertices[ends[1]].at;
         kept.push(Kept {
             sites: [la, lb],
             ends,
-            points: e.points,
+            points,
         });
     }
-    let chains = chain_edges(kept, &labels);
     // Insides of polygons, clipping, output indices.
     let domain = scene.domain;
+    // Where an edge ends on a site (a corner), the two distance fields are not
+    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
+    let hair = 1e-9 * domain.longest_side();
+    let chains = chain_edges(kept, &labels, |v| raw_vertices[v].t <= hair);
     let mut out = VoronoiComplex::default();
     let mut out_index: Vec<Option<usize>> = vec![None; nv];
     let mut vertex_out = |v: usize, out: &mut VoronoiComplex| -> Option<usize> {
@@ -581,9 +605,6 @@ fn assemble(
             out.vertices.len() - 1
         }))
     };
-    // Where an edge ends on a site (a corner), the two distance fields are not
-    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
-    let hair = 1e-9 * domain.longest_side();
     let pull = |points: &mut Vec<Point>, at_start: bool| {
         let n = points.len();
         let (end, next) = if at_start { (0, 1) } else { (n - 1, n - 2) };

@@ -58,8 +58,12 @@ fn arc_span(start: f64, end: f64) -> Option<f64> {
 /// The generators of a scene and what they stand for.
 struct Generators {
     points: Vec<Point>,
-    /// Per point generator: (site, corner index, or `None` for a point site).
+    /// Per point generator: (site, corner index, or `None` for a point site), the
+    /// first site in the scene that has the point, which names it on edges.
     point_owner: Vec<(usize, Option<usize>)>,
+    /// The other sites' corners and point sites at a shared point (vertices there list
+    /// them all: they are one point).
+    also: HashMap<u32, Vec<(usize, Option<usize>)>>,
     segments: Vec<[u32; 2]>,
     /// Per segment generator: (site, edge index).
     segment_owner: Vec<(usize, usize)>,
@@ -77,6 +81,7 @@ impl Generators {
         let mut g = Generators {
             points: Vec::new(),
             point_owner: Vec::new(),
+            also: HashMap::new(),
             segments: Vec::new(),
             segment_owner: Vec::new(),
             arcs: Vec::new(),
@@ -88,11 +93,19 @@ impl Generators {
         let mut point = |g: &mut Generators, p: Point, owner: (usize, Option<usize>)| {
             // −0.0 and 0.0 are the same point.
             let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
-            *index.entry(key).or_insert_with(|| {
-                g.points.push(p);
-                g.point_owner.push(owner);
-                g.points.len() as u32 - 1
-            })
+            match index.get(&key) {
+                Some(&id) => {
+                    g.share(id, owner);
+                    id
+                }
+                None => {
+                    g.points.push(p);
+                    g.point_owner.push(owner);
+                    let id = g.points.len() as u32 - 1;
+                    index.insert(key, id);
+                    id
+                }
+            }
         };
         let mut chain = |g: &mut Generators, site: usize, corner0: usize, pts: &[Point], closed| {
             let ids: Vec<u32> = pts
@@ -147,13 +160,17 @@ impl Generators {
         }
         // An arc's ends are computed (centre + radius · direction), so they may miss a
         // segment's or another arc's end by an ulp: within 1e-12 of the domain they are
-        // that point.
+        // that point. A point shared by several sites is named by the first of them in
+        // the scene.
         let mut snap = Snap::new(1e-12 * scene.domain.longest_side(), &g.points);
         for (i, mut arc) in arc_sites {
             arc.ends = [0, 1].map(|k| {
                 let end = arc.end_point(k);
                 match snap.find(&g.points, end) {
-                    Some(id) => id,
+                    Some(id) => {
+                        g.share(id, (i, Some(k)));
+                        id
+                    }
                     None => {
                         let id = point(&mut g, end, (i, Some(k)));
                         snap.insert(end, id);
@@ -176,16 +193,39 @@ impl Generators {
         g
     }
 
-    fn point_label(&self, p: u32, mode: Mode) -> Generator {
-        let (site, corner) = self.point_owner[p as usize];
-        match (mode, corner) {
-            (Mode::Voronoi, _) | (_, None) => Generator::Site(site),
-            (_, Some(k)) => Generator::Feature {
-                site,
-                feature: FeatureKind::Corner,
-                index: k,
-            },
+    /// Another owner of point `p`: it names the point if its site comes first.
+    fn share(&mut self, p: u32, owner: (usize, Option<usize>)) {
+        let name = &mut self.point_owner[p as usize];
+        if *name == owner {
+            return;
         }
+        let other = if owner.0 < name.0 {
+            std::mem::replace(name, owner)
+        } else {
+            owner
+        };
+        let also = self.also.entry(p).or_default();
+        if !also.contains(&other) {
+            also.push(other);
+        }
+    }
+
+    fn point_label(&self, p: u32, mode: Mode) -> Generator {
+        owner_label(self.point_owner[p as usize], mode)
+    }
+
+    /// How many labels generator `x` has at a vertex.
+    fn label_count(&self, x: Gen) -> usize {
+        match x {
+            Gen::Point(p) => 1 + self.also.get(&p).map_or(0, Vec::len),
+            _ => 1,
+        }
+    }
+
+    /// The labels of point `p`'s other owners.
+    fn also_labels(&self, p: u32, mode: Mode) -> impl Iterator<Item = Generator> + '_ {
+        let also = self.also.get(&p).map_or(&[][..], |v| &v[..]);
+        also.iter().map(move |&o| owner_label(o, mode))
     }
 
     fn label(&self, g: Gen, mode: Mode) -> Generator {
@@ -245,6 +285,18 @@ impl Generators {
             }
         }
         inside
+    }
+}
+
+/// The label of a point owned by `(site, corner)` (`None`: a point site).
+fn owner_label((site, corner): (usize, Option<usize>), mode: Mode) -> Generator {
+    match (mode, corner) {
+        (Mode::Voronoi, _) | (_, None) => Generator::Site(site),
+        (_, Some(k)) => Generator::Feature {
+            site,
+            feature: FeatureKind::Corner,
+            index: k,
+        },
     }
 }
 
@@ -387,11 +439,14 @@ struct Kept {
 }
 
 /// The labels of each vertex of the union–find's merged vertices (their roots; none
-/// for the others), in the order of the raw vertices and their generators, each once.
+/// for the others), in the order of the raw vertices and their generators, each once:
+/// first the generators' names, then the other owners of shared points.
 struct Labels {
     /// Root `r`'s labels are `items[start[r]..start[r] + len[r]]`.
     start: Vec<usize>,
     len: Vec<usize>,
+    /// How many of them are names (the rest are other owners of shared points).
+    named: Vec<usize>,
     items: Vec<Generator>,
 }
 
@@ -407,7 +462,7 @@ impl Labels {
         // Room for every generator of the vertices merged into each root.
         let mut start = vec![0usize; nv + 1];
         for (v, rv) in raw.iter().enumerate() {
-            start[root[v] + 1] += rv.gens.len();
+            start[root[v] + 1] += rv.gens.iter().map(|&x| g.label_count(x)).sum::<usize>();
         }
         for v in 0..nv {
             start[v + 1] += start[v];
@@ -415,15 +470,27 @@ impl Labels {
         let mut labels = Labels {
             items: vec![Generator::Site(0); start[nv]],
             len: vec![0; nv],
+            named: vec![0; nv],
             start,
         };
+        let add = |labels: &mut Labels, r: usize, l: Generator| {
+            if !labels.of_vertex(r).contains(&l) {
+                labels.items[labels.start[r] + labels.len[r]] = l;
+                labels.len[r] += 1;
+            }
+        };
         for (v, rv) in raw.iter().enumerate() {
-            let r = root[v];
             for &gen in &rv.gens {
-                let l = g.label(gen, mode);
-                if !labels.of_vertex(r).contains(&l) {
-                    labels.items[labels.start[r] + labels.len[r]] = l;
-                    labels.len[r] += 1;
+                add(&mut labels, root[v], g.label(gen, mode));
+            }
+        }
+        labels.named.copy_from_slice(&labels.len);
+        for (v, rv) in raw.iter().enumerate() {
+            for &gen in &rv.gens {
+                if let Gen::Point(p) = gen {
+                    for l in g.also_labels(p, mode) {
+                        add(&mut labels, root[v], l);
+                    }
                 }
             }
         }
@@ -471,7 +538,7 @@ impl Incident {
 
 /// Chains the kept edges through the vertices that join two labels and two kept
 /// edges, away from the sites: one chain from every node (a vertex of three or more
-/// labels, not two kept edges, or `on_site`, as a tangent joint on its normal) along
+/// named labels, not two kept edges, or `on_site`, as a tangent joint on its normal) along
 /// each of its unused edges, then the closed loops left. Each edge's points move into
 /// its chain.
 fn chain_edges(
@@ -481,7 +548,7 @@ fn chain_edges(
 ) -> Vec<Chain> {
     let nv = labels.len.len();
     let incident = Incident::of(&kept, nv);
-    let is_node = |v: usize| labels.len[v] >= 3 || incident.around(v).len() != 2 || on_site(v);
+    let is_node = |v: usize| labels.named[v] >= 3 || incident.around(v).len() != 2 || on_site(v);
     let mut used = vec![false; kept.len()];
     let mut chains: Vec<Chain> = Vec::new();
     // The chain from vertex `from` along `start_edge`, its last vertex, and whether it

@@ -1583,6 +1583,19 @@ fn failing_arc_segment_angled_joint() {
     check_failing("arc-segment-angled-joint");
 }
 
+/// The shipped example `examples/scenes/rounded-rect-slot.json` (a rounded rectangle,
+/// a stadium slot inside it and a point: eight tangent joints, separate sites sharing
+/// ends), as shipped (`voronoi`) and in `complex` mode.
+#[test]
+fn shipped_rounded_rect_slot() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/rounded-rect-slot.json");
+    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    check_value(&v).unwrap();
+    v["mode"] = json!("complex");
+    check_value(&v).unwrap();
+}
+
 /// The rounded rectangles and stadiums with the completeness check.
 #[test]
 fn tangent_joints_complete() {

@@ -27,8 +27,8 @@
 //!   common normal is an edge between the two features; it was once missing
 //!   (`failing/arc-tangent-segment.json`, `failing/two-arcs-tangent-joint.json`).
 //!
-//! Known failure (scene under `tests/data/scenes/arcs/failing/`, test marked
-//! `#[ignore]`): one arc with a point deep inside its circle.
+//! Former known failures (scenes under `tests/data/scenes/arcs/failing/`), all passing
+//! now: one arc with a point deep inside its circle (a closed loop cut by the domain).
 //! The half circle closed by its diameter once failed (both ends of its edge lie on
 //! the sites, so the residuals did not decide the conic's branch; now the piece of
 //! smaller clearance is taken). Scenes where an arc's cell reached the far generators
@@ -1503,20 +1503,6 @@ fn check_failing(name: &str) {
     check_value(&guarded(v)).unwrap();
 }
 
-/// The failing scene fails (so that a fix shows up as a passing ignored test, and the
-/// ignored test stays honest), and passes once guarded.
-#[test]
-fn known_failures_still_fail_and_pass_guarded() {
-    let name = "arc-span-2.5-point-inside-deep";
-    let v = failing(name);
-    assert!(
-        check_value(&v).is_err(),
-        "{name} passes now: un-ignore its test"
-    );
-    let g = check_value(&guarded(v));
-    assert!(g.is_ok(), "{name} guarded: {g:?}");
-}
-
 #[test]
 fn failing_d_shape() {
     check_failing("d-shape-half-circle-diameter");
@@ -1527,8 +1513,10 @@ fn failing_arc_point_inside_near() {
     check_failing("arc-span-1.5-point-inside-near");
 }
 
+/// Arc [3.4, 5.9] r 1 with a point at (0.26, -0.43) inside its circle: the point's
+/// cell is bounded by one loop of edges, cut by the domain where its first point was
+/// inside (it once came out as two edges ending there, not on the boundary).
 #[test]
-#[ignore = "known failure: arc [3.4, 5.9] r 1 with a point at (0.26, -0.43) inside its circle: arc/point edge runs to (-0.013, -2)"]
 fn failing_arc_point_inside_deep() {
     check_failing("arc-span-2.5-point-inside-deep");
 }

@@ -706,8 +706,16 @@ fn assemble(
     };
     #[cfg(not(feature = "parallel"))]
     let clipped: Vec<_> = chains.into_iter().map(clip).collect();
-    for (pieces, from, to, sites) in clipped.into_iter().flatten() {
+    for (mut pieces, from, to, sites) in clipped.into_iter().flatten() {
         let closed_loop = from.is_none();
+        // A closed loop cut by the domain whose first point is inside: its last piece
+        // runs on into its first (the loop repeats its first point last).
+        if closed_loop && pieces.len() >= 2 && !pieces[0].1 {
+            let (last, start_cut, _) = pieces.pop().expect("two pieces");
+            let first = &mut pieces[0];
+            first.0 = last.into_iter().chain(first.0.drain(1..)).collect();
+            first.1 = start_cut;
+        }
         for (piece, start_cut, end_cut) in pieces {
             let from = if start_cut || closed_loop {
                 None

@@ -7,7 +7,8 @@
 //!   every arc short of a full circle.
 //! * Labels: in `voronoi` mode a generator is its site; in `complex` and
 //!   `medial_axis` modes a corner, an edge or a piece (an arc's inside) feature (a
-//!   point site stays a site).
+//!   point site stays a site). A point shared by several sites is named by the first
+//!   of them in the scene; vertices there list all of them.
 //! * Edges between a corner and a segment ending there (the zone boundaries, or
 //!   separators) and edges between two parts of one site in `voronoi` mode are left
 //!   out; edges then run through the vertices that join only two labels, away from

@@ -22,13 +22,13 @@
 //! * a brute-force completeness check (grid 64): neighbouring grid points nearest to
 //!   different generators need an edge labelled with both nearby, unless they tie over
 //!   a region (sites sharing an end at an angle), a third generator is close, or the
-//!   pair is a corner and an edge or piece ending there (a separator). Scenes with
-//!   tangent joints (rounded rectangles, stadiums) are checked without it (known
-//!   failure, `tangent_joints_complete`).
+//!   pair is a corner and an edge or piece ending there (a separator). At a tangent
+//!   (G1) joint (rounded rectangles, stadiums) the joint's face has zero area and the
+//!   common normal is an edge between the two features; it was once missing
+//!   (`failing/arc-tangent-segment.json`, `failing/two-arcs-tangent-joint.json`).
 //!
-//! Known failures (scenes under `tests/data/scenes/arcs/failing/`, tests marked
-//! `#[ignore]`): tangent (G1) joints (the joint's face has zero area and the edge along
-//! the common normal is missing), and one arc with a point deep inside its circle.
+//! Former known failures (scenes under `tests/data/scenes/arcs/failing/`), all passing
+//! now: one arc with a point deep inside its circle (a closed loop cut by the domain).
 //! The half circle closed by its diameter once failed (both ends of its edge lie on
 //! the sites, so the residuals did not decide the conic's branch; now the piece of
 //! smaller clearance is taken). Scenes where an arc's cell reached the far generators
@@ -497,16 +497,6 @@ fn incremental(s: &Scene) -> Result<VoronoiComplex, Error> {
 
 /// Every check of the module doc on one scene; the scene's JSON is in the message.
 fn check_value(v: &Value) -> Result<(), String> {
-    check_with(v, true)
-}
-
-/// Soundness and structure only (for the scenes with tangent joints, whose missing
-/// edges are a known failure: see `failing_tangent_joint_edges`).
-fn check_sound(v: &Value) -> Result<(), String> {
-    check_with(v, false)
-}
-
-fn check_with(v: &Value, completeness: bool) -> Result<(), String> {
     let s = scene_of(v);
     let ctx = || serde_json::to_string(v).unwrap();
     let d = incremental(&s).map_err(|e| format!("refused: {e} (scene {})", ctx()))?;
@@ -521,7 +511,7 @@ fn check_with(v: &Value, completeness: bool) -> Result<(), String> {
             ctx()
         ));
     }
-    if let Some(m) = missing_edge(&s, &d, 64).filter(|_| completeness) {
+    if let Some(m) = missing_edge(&s, &d, 64) {
         return Err(format!("completeness: {m} (scene {})", ctx()));
     }
     Ok(())
@@ -899,16 +889,12 @@ fn fixed_scenes() -> Vec<(&'static str, Value)> {
 }
 
 fn check_fixed(prefix: &str) {
-    check_fixed_with(prefix, check_value)
-}
-
-fn check_fixed_with(prefix: &str, check: fn(&Value) -> Result<(), String>) {
     let mut failures = Vec::new();
     let mut n = 0;
     for (name, v) in fixed_scenes() {
         if name.starts_with(prefix) {
             n += 1;
-            if let Err(e) = check(&v) {
+            if let Err(e) = check_value(&v) {
                 failures.push(format!("{name}: {e}"));
             }
         }
@@ -964,12 +950,12 @@ fn d_shapes() {
 
 #[test]
 fn rounded_rectangles() {
-    check_fixed_with("rounded-rect", check_sound);
+    check_fixed("rounded-rect");
 }
 
 #[test]
 fn stadium() {
-    check_fixed_with("stadium-", check_sound);
+    check_fixed("stadium-");
 }
 
 #[test]
@@ -1476,7 +1462,7 @@ proptest! {
     ) {
         let rho = f * w.min(h);
         let v = rounded_rect_scene(mode, (cx, cy), w, h, rho, &extra);
-        prop_assert!(check_sound(&v).is_ok(), "{}", check_sound(&v).unwrap_err());
+        prop_assert!(check_value(&v).is_ok(), "{}", check_value(&v).unwrap_err());
     }
 
     /// A segment through an inner point of an arc, transverse to it, is a conflict
@@ -1517,26 +1503,6 @@ fn check_failing(name: &str) {
     check_value(&guarded(v)).unwrap();
 }
 
-/// The failing scenes fail (so that a fix shows up as a passing ignored test, and the
-/// ignored tests stay honest), and all but the D pass once guarded.
-#[test]
-fn known_failures_still_fail_and_pass_guarded() {
-    for name in [
-        "arc-span-2.5-point-inside-deep",
-        "arc-tangent-segment",
-        "two-arcs-tangent-joint",
-    ] {
-        let v = failing(name);
-        assert!(
-            check_value(&v).is_err(),
-            "{name} passes now: un-ignore its test"
-        );
-        let g = check_value(&guarded(v));
-        let guarded_fails = name.contains("tangent");
-        assert_eq!(g.is_err(), guarded_fails, "{name} guarded: {g:?}");
-    }
-}
-
 #[test]
 fn failing_d_shape() {
     check_failing("d-shape-half-circle-diameter");
@@ -1547,8 +1513,10 @@ fn failing_arc_point_inside_near() {
     check_failing("arc-span-1.5-point-inside-near");
 }
 
+/// Arc [3.4, 5.9] r 1 with a point at (0.26, -0.43) inside its circle: the point's
+/// cell is bounded by one loop of edges, cut by the domain where its first point was
+/// inside (it once came out as two edges ending there, not on the boundary).
 #[test]
-#[ignore = "known failure: arc [3.4, 5.9] r 1 with a point at (0.26, -0.43) inside its circle: arc/point edge runs to (-0.013, -2)"]
 fn failing_arc_point_inside_deep() {
     check_failing("arc-span-2.5-point-inside-deep");
 }
@@ -1584,16 +1552,16 @@ fn failing_two_arcs_big_span() {
 }
 
 /// Tangent (G1) joints between separate sites: the common normal at the joint is an
-/// edge between their cells (a line, not a tie region as at an angled joint), but the
-/// engine leaves it out as two separators.
+/// edge between their cells (a line, not a tie region as at an angled joint), once
+/// left out as two separators: arc [0, π/2] r 1 and segment (1, 0)-(1, -1), edge
+/// Site(0)/Site(1) on y = 0.
 #[test]
-#[ignore = "known failure: no edge along the common normal of a tangent joint: arc [0, π/2] r 1 and segment (1, 0)-(1, -1), missing edge Site(0)/Site(1) on y = 0"]
 fn failing_arc_tangent_segment() {
     check_failing("arc-tangent-segment");
 }
 
+/// Arcs [π/2, π] and [π, 3π/2] of one circle: edge Site(0)/Site(1) on y = 0.
 #[test]
-#[ignore = "known failure: no edge along the common normal of a tangent joint: arcs [π/2, π] and [π, 3π/2] of one circle, missing edge Site(0)/Site(1) on y = 0"]
 fn failing_two_arcs_tangent_joint() {
     check_failing("two-arcs-tangent-joint");
 }
@@ -1603,9 +1571,21 @@ fn failing_arc_segment_angled_joint() {
     check_failing("arc-segment-angled-joint");
 }
 
+/// The shipped example `examples/scenes/rounded-rect-slot.json` (a rounded rectangle,
+/// a stadium slot inside it and a point: eight tangent joints, separate sites sharing
+/// ends), as shipped (`voronoi`) and in `complex` mode.
+#[test]
+fn shipped_rounded_rect_slot() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/rounded-rect-slot.json");
+    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    check_value(&v).unwrap();
+    v["mode"] = json!("complex");
+    check_value(&v).unwrap();
+}
+
 /// The rounded rectangles and stadiums with the completeness check.
 #[test]
-#[ignore = "known failure: no edges along the common normals of the tangent joints (failing/arc-tangent-segment.json, failing/two-arcs-tangent-joint.json)"]
 fn tangent_joints_complete() {
     check_fixed("rounded-rect");
     check_fixed("stadium-");

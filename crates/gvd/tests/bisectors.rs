@@ -162,6 +162,7 @@ fn arc_edges_follow_their_bisectors() {
         "arcs-0030-points-0020.json",
         "arcs-0030-points-0020-complex.json",
         "examples/scenes/slot-pocket.json",
+        "examples/scenes/rounded-rect-slot.json",
     ] {
         let s = scene(name);
         let d = with_bisectors(&s);

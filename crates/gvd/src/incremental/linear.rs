@@ -7,14 +7,18 @@
 //!   every arc short of a full circle.
 //! * Labels: in `voronoi` mode a generator is its site; in `complex` and
 //!   `medial_axis` modes a corner, an edge or a piece (an arc's inside) feature (a
-//!   point site stays a site).
+//!   point site stays a site). A point shared by several sites is named by the first
+//!   of them in the scene; vertices there list all of them.
 //! * Edges between a corner and a segment ending there (the zone boundaries, or
 //!   separators) and edges between two parts of one site in `voronoi` mode are left
-//!   out; edges then run through the vertices that join only two labels. Edges inside
+//!   out; edges then run through the vertices that join only two labels, away from
+//!   the sites. At a tangent joint the end's face has zero area: its two sides of
+//!   separators become one edge between the two features (`joints.rs`). Edges inside
 //!   polygons are left out in `voronoi` and `complex` modes (the inside is part of the
 //!   site) and kept only there in `medial_axis` mode. Everything is clipped to the
 //!   domain.
 
+use super::joints;
 use super::offset_form::{self, OffsetGen};
 use super::rescale;
 use super::segments::{
@@ -62,8 +66,12 @@ fn arc_span(start: f64, end: f64) -> Option<f64> {
 /// The generators of a scene and what they stand for.
 struct Generators {
     points: Vec<Point>,
-    /// Per point generator: (site, corner index, or `None` for a point site).
+    /// Per point generator: (site, corner index, or `None` for a point site), the
+    /// first site in the scene that has the point, which names it on edges.
     point_owner: Vec<(usize, Option<usize>)>,
+    /// The other sites' corners and point sites at a shared point (vertices there list
+    /// them all: they are one point).
+    also: HashMap<u32, Vec<(usize, Option<usize>)>>,
     segments: Vec<[u32; 2]>,
     /// Per segment generator: (site, edge index).
     segment_owner: Vec<(usize, usize)>,
@@ -81,6 +89,7 @@ impl Generators {
         let mut g = Generators {
             points: Vec::new(),
             point_owner: Vec::new(),
+            also: HashMap::new(),
             segments: Vec::new(),
             segment_owner: Vec::new(),
             arcs: Vec::new(),
@@ -92,11 +101,19 @@ impl Generators {
         let mut point = |g: &mut Generators, p: Point, owner: (usize, Option<usize>)| {
             // −0.0 and 0.0 are the same point.
             let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
-            *index.entry(key).or_insert_with(|| {
-                g.points.push(p);
-                g.point_owner.push(owner);
-                g.points.len() as u32 - 1
-            })
+            match index.get(&key) {
+                Some(&id) => {
+                    g.share(id, owner);
+                    id
+                }
+                None => {
+                    g.points.push(p);
+                    g.point_owner.push(owner);
+                    let id = g.points.len() as u32 - 1;
+                    index.insert(key, id);
+                    id
+                }
+            }
         };
         let mut chain = |g: &mut Generators, site: usize, corner0: usize, pts: &[Point], closed| {
             let ids: Vec<u32> = pts
@@ -151,13 +168,17 @@ impl Generators {
         }
         // An arc's ends are computed (centre + radius · direction), so they may miss a
         // segment's or another arc's end by an ulp: within 1e-12 of the domain they are
-        // that point.
+        // that point. A point shared by several sites is named by the first of them in
+        // the scene.
         let mut snap = Snap::new(1e-12 * scene.domain.longest_side(), &g.points);
         for (i, mut arc) in arc_sites {
             arc.ends = [0, 1].map(|k| {
                 let end = arc.end_point(k);
                 match snap.find(&g.points, end) {
-                    Some(id) => id,
+                    Some(id) => {
+                        g.share(id, (i, Some(k)));
+                        id
+                    }
                     None => {
                         let id = point(&mut g, end, (i, Some(k)));
                         snap.insert(end, id);
@@ -180,16 +201,39 @@ impl Generators {
         g
     }
 
-    fn point_label(&self, p: u32, mode: Mode) -> Generator {
-        let (site, corner) = self.point_owner[p as usize];
-        match (mode, corner) {
-            (Mode::Voronoi, _) | (_, None) => Generator::Site(site),
-            (_, Some(k)) => Generator::Feature {
-                site,
-                feature: FeatureKind::Corner,
-                index: k,
-            },
+    /// Another owner of point `p`: it names the point if its site comes first.
+    fn share(&mut self, p: u32, owner: (usize, Option<usize>)) {
+        let name = &mut self.point_owner[p as usize];
+        if *name == owner {
+            return;
         }
+        let other = if owner.0 < name.0 {
+            std::mem::replace(name, owner)
+        } else {
+            owner
+        };
+        let also = self.also.entry(p).or_default();
+        if !also.contains(&other) {
+            also.push(other);
+        }
+    }
+
+    fn point_label(&self, p: u32, mode: Mode) -> Generator {
+        owner_label(self.point_owner[p as usize], mode)
+    }
+
+    /// How many labels generator `x` has at a vertex.
+    fn label_count(&self, x: Gen) -> usize {
+        match x {
+            Gen::Point(p) => 1 + self.also.get(&p).map_or(0, Vec::len),
+            _ => 1,
+        }
+    }
+
+    /// The labels of point `p`'s other owners.
+    fn also_labels(&self, p: u32, mode: Mode) -> impl Iterator<Item = Generator> + '_ {
+        let also = self.also.get(&p).map_or(&[][..], |v| &v[..]);
+        also.iter().map(move |&o| owner_label(o, mode))
     }
 
     fn label(&self, g: Gen, mode: Mode) -> Generator {
@@ -302,6 +346,18 @@ impl Generators {
             }
         }
         inside
+    }
+}
+
+/// The label of a point owned by `(site, corner)` (`None`: a point site).
+fn owner_label((site, corner): (usize, Option<usize>), mode: Mode) -> Generator {
+    match (mode, corner) {
+        (Mode::Voronoi, _) | (_, None) => Generator::Site(site),
+        (_, Some(k)) => Generator::Feature {
+            site,
+            feature: FeatureKind::Corner,
+            index: k,
+        },
     }
 }
 
@@ -468,11 +524,14 @@ struct Kept {
 }
 
 /// The labels of each vertex of the union–find's merged vertices (their roots; none
-/// for the others), in the order of the raw vertices and their generators, each once.
+/// for the others), in the order of the raw vertices and their generators, each once:
+/// first the generators' names, then the other owners of shared points.
 struct Labels {
     /// Root `r`'s labels are `items[start[r]..start[r] + len[r]]`.
     start: Vec<usize>,
     len: Vec<usize>,
+    /// How many of them are names (the rest are other owners of shared points).
+    named: Vec<usize>,
     items: Vec<Generator>,
 }
 
@@ -488,7 +547,7 @@ impl Labels {
         // Room for every generator of the vertices merged into each root.
         let mut start = vec![0usize; nv + 1];
         for (v, rv) in raw.iter().enumerate() {
-            start[root[v] + 1] += rv.gens.len();
+            start[root[v] + 1] += rv.gens.iter().map(|&x| g.label_count(x)).sum::<usize>();
         }
         for v in 0..nv {
             start[v + 1] += start[v];
@@ -496,15 +555,27 @@ impl Labels {
         let mut labels = Labels {
             items: vec![Generator::Site(0); start[nv]],
             len: vec![0; nv],
+            named: vec![0; nv],
             start,
         };
+        let add = |labels: &mut Labels, r: usize, l: Generator| {
+            if !labels.of_vertex(r).contains(&l) {
+                labels.items[labels.start[r] + labels.len[r]] = l;
+                labels.len[r] += 1;
+            }
+        };
         for (v, rv) in raw.iter().enumerate() {
-            let r = root[v];
             for &gen in &rv.gens {
-                let l = g.label(gen, mode);
-                if !labels.of_vertex(r).contains(&l) {
-                    labels.items[labels.start[r] + labels.len[r]] = l;
-                    labels.len[r] += 1;
+                add(&mut labels, root[v], g.label(gen, mode));
+            }
+        }
+        labels.named.copy_from_slice(&labels.len);
+        for (v, rv) in raw.iter().enumerate() {
+            for &gen in &rv.gens {
+                if let Gen::Point(p) = gen {
+                    for l in g.also_labels(p, mode) {
+                        add(&mut labels, root[v], l);
+                    }
                 }
             }
         }
@@ -551,13 +622,18 @@ impl Incident {
 }
 
 /// Chains the kept edges through the vertices that join two labels and two kept
-/// edges: one chain from every node (a vertex of three or more labels, or not two
-/// kept edges) along each of its unused edges, then the closed loops left. Each
-/// edge's points move into its chain.
-fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
+/// edges, away from the sites: one chain from every node (a vertex of three or more
+/// named labels, not two kept edges, or `on_site`, as a tangent joint on its normal) along
+/// each of its unused edges, then the closed loops left. Each edge's points move into
+/// its chain.
+fn chain_edges(
+    mut kept: Vec<Kept>,
+    labels: &Labels,
+    on_site: impl Fn(usize) -> bool,
+) -> Vec<Chain> {
     let nv = labels.len.len();
     let incident = Incident::of(&kept, nv);
-    let is_node = |v: usize| labels.len[v] >= 3 || incident.around(v).len() != 2;
+    let is_node = |v: usize| labels.named[v] >= 3 || incident.around(v).len() != 2 || on_site(v);
     let mut used = vec![false; kept.len()];
     let mut chains: Vec<Chain> = Vec::new();
     // The chain from vertex `from` along `start_edge`, its last vertex, and whether it
@@ -623,17 +699,25 @@ fn chain_edges(mut kept: Vec<Kept>, labels: &Labels) -> Vec<Chain> {
 fn assemble(
     g: &Generators,
     scene: &Scene,
-    raw_vertices: Vec<super::segments::RawVertex>,
-    raw_edges: Vec<super::segments::RawEdge>,
+    mut raw_vertices: Vec<super::segments::RawVertex>,
+    mut raw_edges: Vec<super::segments::RawEdge>,
     bisectors: bool,
 ) -> VoronoiComplex {
     let mode = scene.mode;
     let nv = raw_vertices.len();
-    // Vertices joined by zero-length edges are one vertex.
+    let joints = joints::tangent_joints(&g.points, &g.segments, &g.arcs);
+    // Contracting a tip moves edge ends by its length: at most epsilon/8 (tips are
+    // points up to rounding, which grows where the sliver's sides meet a bisector at
+    // a shallow angle far out).
+    let tip_tol = scene.epsilon / 8.0;
+    let tips = joints::collapse(&joints, tip_tol, &mut raw_vertices, &mut raw_edges);
+    // Vertices joined by zero-length edges are one vertex, and so are the vertices
+    // of a tangent joint's tip.
     let mut parent: Vec<usize> = (0..nv).collect();
     let zero = |e: &super::segments::RawEdge| e.points.windows(2).all(|w| w[0] == w[1]);
-    for e in raw_edges.iter().filter(|e| zero(e)) {
-        let (a, b) = (find(&mut parent, e.ends[0]), find(&mut parent, e.ends[1]));
+    let zero_ends = raw_edges.iter().filter(|e| zero(e)).map(|e| e.ends);
+    for [a, b] in zero_ends.chain(tips) {
+        let (a, b) = (find(&mut parent, a), find(&mut parent, b));
         parent[a.max(b)] = a.min(b);
     }
     let labels = Labels::of(g, mode, &raw_vertices, &mut parent);
@@ -648,16 +732,24 @@ fn assemble(
             continue;
         }
         let ends = e.ends.map(|v| find(&mut parent, v));
+        // A merged vertex is at its root: the polyline ends there.
+        let mut points = e.points;
+        let last = points.len() - 1;
+        points[0] = raw_vertices[ends[0]].at;
+        points[last] = raw_vertices[ends[1]].at;
         kept.push(Kept {
             sites: [la, lb],
             gens: e.gens,
             ends,
-            points: e.points,
+            points,
         });
     }
-    let chains = chain_edges(kept, &labels);
     // Insides of polygons, clipping, output indices.
     let domain = scene.domain;
+    // Where an edge ends on a site (a corner), the two distance fields are not
+    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
+    let hair = 1e-9 * domain.longest_side();
+    let chains = chain_edges(kept, &labels, |v| raw_vertices[v].t <= hair);
     let mut out = VoronoiComplex::default();
     let mut out_index: Vec<Option<usize>> = vec![None; nv];
     let mut vertex_out = |v: usize, out: &mut VoronoiComplex| -> Option<usize> {
@@ -672,9 +764,6 @@ fn assemble(
             out.vertices.len() - 1
         }))
     };
-    // Where an edge ends on a site (a corner), the two distance fields are not
-    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
-    let hair = 1e-9 * domain.longest_side();
     let pull = |points: &mut Vec<Point>, at_start: bool| {
         let n = points.len();
         let (end, next) = if at_start { (0, 1) } else { (n - 1, n - 2) };
@@ -721,8 +810,21 @@ fn assemble(
     };
     #[cfg(not(feature = "parallel"))]
     let clipped: Vec<_> = chains.into_iter().map(clip).collect();
-    for (pieces, from, to, sites) in clipped.into_iter().flatten() {
+    for (mut pieces, from, to, sites) in clipped.into_iter().flatten() {
         let closed_loop = from.is_none();
+        // A closed loop cut by the domain whose first point is inside: its last piece
+        // runs on into its first (the loop repeats its first point last).
+        if closed_loop && pieces.len() >= 2 && !pieces[0].1 {
+            let (last, start_cut, _, last_form) = pieces.pop().expect("two pieces");
+            let first = &mut pieces[0];
+            first.0 = last.into_iter().chain(first.0.drain(1..)).collect();
+            first.1 = start_cut;
+            first.3 = if last_form.is_empty() || first.3.is_empty() {
+                Vec::new()
+            } else {
+                last_form.into_iter().chain(first.3.drain(..)).collect()
+            };
+        }
         for (piece, start_cut, end_cut, bisector) in pieces {
             let from = if start_cut || closed_loop {
                 None

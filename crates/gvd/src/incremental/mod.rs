@@ -27,6 +27,7 @@
 mod cells;
 mod graph;
 mod insert;
+mod joints;
 pub mod linear;
 mod offset_form;
 mod order;

@@ -308,11 +308,12 @@ impl Gens {
             .map_or(0.0, |e| (-(q - e.at).dot(e.into)).max(0.0))
     }
 
-    /// `g`, or its end corner where the foot from `x` is that corner and `x` lies beyond
-    /// it by more than `tiny` (a bisection crossed the corner's zone boundary).
-    pub(super) fn corner_if_at_end(&self, g: usize, x: Point, tiny: f64) -> usize {
+    /// `g`, or its end corner where the foot from `x` is that corner (within `tiny`) and
+    /// `x` lies beyond it by more than `tiny` and `margin` (a bisection crossed the
+    /// corner's zone boundary).
+    pub(super) fn corner_if_at_end(&self, g: usize, x: Point, tiny: f64, margin: f64) -> usize {
         match self.end_at_foot(g, x, tiny) {
-            Some(e) if (x - e.at).dot(e.into) < -tiny => e.corner,
+            Some(e) if (x - e.at).dot(e.into) < -tiny.max(margin) => e.corner,
             _ => g,
         }
     }

@@ -459,7 +459,45 @@ impl<'a> Checker<'a> {
             f64::INFINITY
         };
         let (dmin, gmin) = if va <= vb { (va, ga) } else { (vb, gb) };
+        if e_tie > 0.25 * self.tol {
+            if let Some(s) = self.bracket(q0, a, b, ga + gb).filter(|&s| s < e_tie) {
+                let (va, ga) = self.eval(a, q0);
+                let (vb, gb) = self.eval(b, q0);
+                let (dmin, gmin) = if va <= vb { (va, ga) } else { (vb, gb) };
+                return (s, q0, dmin, gmin);
+            }
+        }
         (e_tie, q, dmin, gmin)
+    }
+
+    /// A certificate that the bisector of `a` and `b` passes within `s ≤ tol` of `q`:
+    /// `d_a − d_b` changes sign (or vanishes) between `q − s·n` and `q + s·n`, for `n`
+    /// perpendicular to `g` (the sum of the fields' gradients, along which both grow
+    /// alike) or along `g` itself; the least such `s` among `tol·2⁻ᵏ`, `k ≤ 40`.
+    /// Where the two fields are tangent along the bisector (the common normal of a
+    /// tangent joint: `d_a − d_b` vanishes to second order across it), the first-order
+    /// estimate `|d_a − d_b| / |∇(d_a − d_b)|` divides rounding by rounding on it.
+    fn bracket(&self, q: Point, a: usize, b: usize, g: Point) -> Option<f64> {
+        let len = g.norm();
+        if !(len > 0.0 && len.is_finite()) {
+            return None;
+        }
+        let g = g * (1.0 / len);
+        let diff = |x: Point| self.fields[a].value(x) - self.fields[b].value(x);
+        let mut best = None;
+        let mut s = self.tol;
+        for _ in 0..=40 {
+            let changes = [g.perp(), g].iter().any(|&n| {
+                let (lo, hi) = (diff(q - n * s), diff(q + n * s));
+                lo.is_finite() && hi.is_finite() && lo * hi <= 0.0
+            });
+            if !changes {
+                break;
+            }
+            best = Some(s);
+            s *= 0.5;
+        }
+        best
     }
 
     /// Whether `q` lies in the `medial_axis` region (always true in the other modes).
@@ -721,8 +759,9 @@ impl<'a> Checker<'a> {
     /// The crossings of the bisectors between the nearest generators `a` at `qa` and
     /// `b` at `qb`: bisection of `d_a − d_b` (14 steps); where a third generator is
     /// nearer at the crossing, both halves are searched again (depth ≤ 4). An edge or
-    /// piece whose foot at the crossing is its end corner becomes that corner (the
-    /// bisection crossed the corner's zone boundary). Crossings in ties of coincident
+    /// piece whose foot at the crossing is its end corner, beyond it by more than the
+    /// last bracket, becomes that corner (the bisection crossed the corner's zone
+    /// boundary). Crossings in ties of coincident
     /// feet, inside closed sites and outside the medial-axis region are skipped.
     fn crossings(
         &self,
@@ -746,10 +785,14 @@ impl<'a> Checker<'a> {
         let x = qa.lerp(qb, 0.5 * (lo + hi));
         let (da, ga) = self.eval(a, x);
         let (db, gb) = self.eval(b, x);
+        // The crossing is known within the last bracket: only beyond a corner by more
+        // than that did the bisection cross the corner's zone boundary (a tangent
+        // joint's crossing lies on the boundary, on either side by rounding).
+        let bracket = qa.dist(qb) * (hi - lo);
         let (a, b) = if self.gens.featured {
             (
-                self.gens.corner_if_at_end(a, x, self.tiny),
-                self.gens.corner_if_at_end(b, x, self.tiny),
+                self.gens.corner_if_at_end(a, x, self.tiny, bracket),
+                self.gens.corner_if_at_end(b, x, self.tiny, bracket),
             )
         } else {
             (a, b)

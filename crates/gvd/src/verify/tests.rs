@@ -493,3 +493,44 @@ fn timing_800_points_grid_512() {
     );
     assert!(r.passed, "{:?}", r.problems);
 }
+
+/// On the common normal of a tangent joint (an arc and a segment, turned so that no
+/// coordinate is exact) the two distances agree to second order across the normal:
+/// the edge along it passes (the sign change of `d_a − d_b` certifies it where the
+/// first-order estimate is rounding over rounding), and the same edge moved by 3ε does
+/// not.
+#[test]
+fn tangent_joint_normal_passes_and_moved_fails() {
+    let (theta, r) = (0.3f64, 0.5);
+    let u = Point::new(theta.cos(), theta.sin());
+    let p = u * r;
+    let tangent = Point::new(theta.sin(), -theta.cos());
+    let s = scene(vec![
+        SiteKind::Arc {
+            center: Point::new(0.0, 0.0),
+            radius: r,
+            start_angle: theta,
+            end_angle: theta + 1.5,
+        },
+        SiteKind::Segment {
+            from: p,
+            to: p + tangent * 0.4,
+        },
+    ]);
+    let normal = |shift: f64| {
+        let off = u.perp() * shift;
+        let pts: Vec<Point> = (1..=40)
+            .map(|k| u * (0.02 + 0.009 * k as f64) + off)
+            .collect();
+        VoronoiComplex {
+            vertices: Vec::new(),
+            edges: vec![edge(0, 1, None, None, &pts)],
+            ..VoronoiComplex::default()
+        }
+    };
+    let r = check(&s, &normal(0.0));
+    assert!(r.sound == 1.0, "{} {:?}", r.summary_line(), r.problems);
+    assert!(r.worst_edge_error < 1e-6, "{}", r.worst_edge_error);
+    let r = check(&s, &normal(3.0 * EPS));
+    assert!(r.sound < 1.0, "{}", r.summary_line());
+}

@@ -1,0 +1,133 @@
+//! Tangent (G1) joints in the segment engine's raw diagram.
+//!
+//! A point `P` that ends exactly two features `F₁`, `F₂` (segments or arcs) whose
+//! tangents there agree is a tangent joint: their normals at `P` are one line `N`.
+//! Every point `x` of `N` (up to the centres of curvature on the concave side) has
+//! its foot on both features at `P`, so `d(x, F₁) = d(x, F₂) = d(x, P) = |x − P|`,
+//! and on either side of `N` one feature is strictly nearer than `P`. So `P`'s face
+//! has zero area and `N` is an edge between `F₁` and `F₂`, with `P` on it (a vertex
+//! where the edge touches the sites).
+//!
+//! The engine leaves `P`'s face as a sliver along `N`: one side is a chain of
+//! separators `P/F₁`, the other of separators `P/F₂`, and at each end of the sliver
+//! (a tip, where a third generator `X` ties with the three) the two sides are joined
+//! by edges `P/X` of zero length up to rounding. The first feature inserted at `P`
+//! gave its side a vertex at `P` (clearance 0). [`collapse`] turns the sliver into
+//! the edge `F₁/F₂`: the side through `P`'s vertex is relabelled, the other side is
+//! dropped, and the tip edges are contracted.
+
+use super::segments::{ArcSpec, Gen, RawEdge, RawVertex};
+use crate::geom::Point;
+use std::collections::HashMap;
+
+/// How far from opposite two features' directions away from a shared end may be
+/// (the sine of the angle between their normals) for a tangent joint: within
+/// rounding of the ends' and tangents' coordinates.
+const TANGENT_TOL: f64 = 1e-9;
+
+/// The tangent joints: each point generator that ends exactly two features whose
+/// unit directions away from it `a₁`, `a₂` satisfy `|a₁ + a₂| ≤ TANGENT_TOL`, with
+/// those two features.
+pub(super) fn tangent_joints(
+    points: &[Point],
+    segments: &[[u32; 2]],
+    arcs: &[ArcSpec],
+) -> HashMap<u32, [Gen; 2]> {
+    let mut at: HashMap<u32, Vec<(Gen, Point)>> = HashMap::new();
+    for (k, &[a, b]) in segments.iter().enumerate() {
+        let d = points[b as usize] - points[a as usize];
+        let d = d * (1.0 / d.norm());
+        at.entry(a)
+            .or_default()
+            .push((Gen::Segment(k as u32), d * -1.0));
+        at.entry(b).or_default().push((Gen::Segment(k as u32), d));
+    }
+    for (k, arc) in arcs.iter().enumerate() {
+        // The counter-clockwise tangent, backwards at the start, forwards at the end.
+        for (end, angle, sign) in [(0, arc.start, -1.0), (1, arc.start + arc.span, 1.0)] {
+            let tangent = Point::new(-angle.sin(), angle.cos()) * sign;
+            at.entry(arc.ends[end])
+                .or_default()
+                .push((Gen::Arc(k as u32), tangent));
+        }
+    }
+    at.into_iter()
+        .filter_map(|(p, f)| match f[..] {
+            [(f1, a1), (f2, a2)] if (a1 + a2).norm() <= TANGENT_TOL => Some((p, [f1, f2])),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Collapses the sliver of every tangent joint (see the module doc) in the raw
+/// diagram: the separators `P/F` on the side of `P`'s vertex become edges `F₁/F₂`
+/// and their vertices list both features, the other side's separators and the tip
+/// edges `P/X` are removed. Returns the tips' vertex pairs, to be merged. A joint
+/// without a vertex at `P` on either side, or with a tip edge longer than `tip_tol`,
+/// is left as it is.
+pub(super) fn collapse(
+    joints: &HashMap<u32, [Gen; 2]>,
+    tip_tol: f64,
+    vertices: &mut [RawVertex],
+    edges: &mut Vec<RawEdge>,
+) -> Vec<[usize; 2]> {
+    if joints.is_empty() {
+        return Vec::new();
+    }
+    // The joint an edge belongs to, and the feature across it (`None` for a tip).
+    let role = |e: &RawEdge| -> Option<(u32, Option<usize>)> {
+        let (p, other) = match e.gens {
+            [Gen::Point(p), o] if joints.contains_key(&p) => (p, o),
+            [o, Gen::Point(p)] if joints.contains_key(&p) => (p, o),
+            _ => return None,
+        };
+        Some((p, joints[&p].iter().position(|&f| f == other)))
+    };
+    // The side through P's vertex, per joint; none where a tip edge is longer than
+    // `tip_tol` (it is zero up to rounding): then the face is no sliver and stays.
+    let mut keep: HashMap<u32, usize> = HashMap::new();
+    for e in edges.iter() {
+        if let Some((p, Some(side))) = role(e) {
+            if e.ends.iter().any(|&v| vertices[v].t == 0.0) {
+                keep.insert(p, side);
+            }
+        }
+    }
+    for e in edges.iter() {
+        if let Some((p, None)) = role(e) {
+            let len: f64 = e.points.windows(2).map(|w| w[0].dist(w[1])).sum();
+            if len > tip_tol {
+                keep.remove(&p);
+            }
+        }
+    }
+    let mut merges = Vec::new();
+    edges.retain_mut(|e| {
+        let Some((p, side)) = role(e) else {
+            return true;
+        };
+        let Some(&kept) = keep.get(&p) else {
+            return true;
+        };
+        match side {
+            Some(s) if s == kept => {
+                let features = joints[&p];
+                e.gens = features;
+                for v in e.ends {
+                    for f in features {
+                        if !vertices[v].gens.contains(&f) {
+                            vertices[v].gens.push(f);
+                        }
+                    }
+                }
+                true
+            }
+            Some(_) => false,
+            None => {
+                merges.push(e.ends);
+                false
+            }
+        }
+    });
+    merges
+}

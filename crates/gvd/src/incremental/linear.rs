@@ -309,12 +309,30 @@ impl Generators {
             let [Some(a), Some(b)] = st.gens.map(|g| self.offset_gen(g, mid)) else {
                 return Vec::new();
             };
-            match offset_form::pieces(a, b, pts, tol) {
+            // Two features with a common end whose own bisector has constant clearance
+            // (two arcs of one circle, two collinear segments) meet along the normal
+            // at that end: the bisector of the end and either feature.
+            let joint = || {
+                let end = self.common_end(st.gens[0], st.gens[1])?;
+                offset_form::pieces(OffsetGen::point(self.points[end as usize]), a, pts, tol)
+            };
+            match offset_form::pieces(a, b, pts, tol).or_else(joint) {
                 Some(p) => out.extend(p),
                 None => return Vec::new(),
             }
         }
         out
+    }
+
+    /// The point generator that ends both `a` and `b` (segments or arcs), if any.
+    fn common_end(&self, a: Gen, b: Gen) -> Option<u32> {
+        let ends = |g: Gen| match g {
+            Gen::Segment(s) => Some(self.segments[s as usize]),
+            Gen::Arc(a) => Some(self.arcs[a as usize].ends),
+            Gen::Point(_) => None,
+        };
+        let (ea, eb) = (ends(a)?, ends(b)?);
+        ea.into_iter().find(|p| eb.contains(p))
     }
 
     /// Whether `a` and `b` are a segment and one of its own ends.

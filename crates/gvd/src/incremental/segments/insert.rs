@@ -336,13 +336,11 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
     let other = g.faces[g.edges[he.twin as usize].face as usize].gen;
     // The closed form where it applies and its point is on the edge (rounding at the
     // edge's ends aside), else bisection.
-    let exit = ray_exit(p, c, dir, sites.shape(other)).map(|s| (c + dir * s, s));
-    let (at, t) = match exit {
-        Some((x, s)) if turn(ta, angle(x)) <= span => (x, s),
-        _ => {
-            let bis = sites.bisector(Gen::Point(p), other, a, b);
-            bis.boundary(a, b, |x, _| turn(ta, angle(x)) < to_ray)
-        }
+    let bis = sites.bisector(Gen::Point(p), other, a, b);
+    let inside = |x: Point, _| turn(ta, angle(x)) < to_ray;
+    let (at, t) = match ray_exit(p, c, dir, sites.shape(other)) {
+        Some(s) => bis.boundary_near(a, b, bis.fraction(a, b, c + dir * s), (0.0, 1.0), inside),
+        None => bis.boundary(a, b, inside),
     };
     g.split_edge(e, at, t);
 }
@@ -540,12 +538,15 @@ fn leave_region(
     let Some(k) = pieces.iter().position(|p| !p.claimed) else {
         return bis.boundary(from, to, inside);
     };
+    let limits = (
+        if k == 0 { 0.0 } else { pieces[k - 1].mid() },
+        pieces[k].mid(),
+    );
     if k > 0 && pieces.exact {
-        return bis.at_fraction(from, to, pieces[k].lo);
+        return bis.boundary_near(from, to, pieces[k].lo, limits, inside);
     }
-    let lo = if k == 0 { 0.0 } else { pieces[k - 1].mid() };
-    let (a, _) = bis.at_fraction(from, to, lo);
-    let (b, _) = bis.at_fraction(from, to, pieces[k].mid());
+    let (a, _) = bis.at_fraction(from, to, limits.0);
+    let (b, _) = bis.at_fraction(from, to, limits.1);
     bis.boundary(a, b, inside)
 }
 
@@ -576,9 +577,10 @@ fn tree_test(g: &Graph, v: u32, sc: &Scratch) -> TreeTest {
 mod tests {
     use super::*;
 
-    /// A2's closed form (the start of the first unclaimed piece) against bisection
-    /// between the middles of the last claimed and the first unclaimed piece, on random
-    /// point/point, point/segment and segment/segment bisectors and a new segment.
+    /// A2's closed form (the start of the first unclaimed piece, a quadratic's root)
+    /// and the vertex refined from it against bisection between the middles of the
+    /// last claimed and the first unclaimed piece, on random point/point, point/segment
+    /// and segment/segment bisectors and a new segment.
     #[test]
     fn leave_region_matches_bisection() {
         let mut seed = 0x0123_4567_89ab_cdefu64;
@@ -616,6 +618,11 @@ mod tests {
             let (hi, _) = bis.at_fraction(a, b, pieces[k].mid());
             let (y, u) = bis.boundary(lo, hi, inside);
             let scale = 1.0 + a.dist(b);
+            let (root, _) = bis.at_fraction(a, b, pieces[k].lo);
+            assert!(
+                root.dist(y) <= 1e-7 * scale,
+                "case {case}: {root:?} vs {y:?}"
+            );
             assert!(x.dist(y) <= 1e-9 * scale, "case {case}: {x:?} vs {y:?}");
             assert!((t - u).abs() <= 1e-9 * scale, "case {case}: {t} vs {u}");
             checked += 1;

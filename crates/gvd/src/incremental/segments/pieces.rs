@@ -8,7 +8,8 @@
 //! * parabolas: `x`, `t`, `f` and `h` are quadratics; `|h| < t` changes where
 //!   `t − h` or `t + h` vanishes;
 //! * lines (and chords): `x`, `f` and `h` are linear and `t²` is quadratic; `|h| < t`
-//!   changes where `h² − t²` vanishes.
+//!   changes where `h² − t²` vanishes (not for a chord along an arc's circle, whose
+//!   clearance is the distance to the circle: those pieces are not exact).
 //!
 //! So the claim can only change at roots of a few quadratics, each interpolated from
 //! three samples; every interval between consecutive roots is then tested at its middle
@@ -76,7 +77,16 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
         }
         _ => {
             let quads = [foot, end, quad(&|(_, h, t)| h * h - t * t)];
-            pieces_between_roots(bis, from, to, &quads, claims)
+            let mut pieces = pieces_between_roots(bis, from, to, &quads, claims);
+            // A chord's clearance to a circle is not polynomial: the roots are only
+            // where the middles tell the claim.
+            if let Bisector::Chord {
+                clearance: Clearance::Circle { .. },
+            } = bis
+            {
+                pieces.exact = false;
+            }
+            pieces
         }
     }
 }

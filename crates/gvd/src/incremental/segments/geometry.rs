@@ -162,9 +162,7 @@ pub(crate) fn ray_exit(id: u32, p: Point, dir: Point, other: Shape) -> Option<f6
 }
 
 /// Half the bracket around a closed form's guess that [`Bisector::boundary_near`]
-/// refines, as a fraction of the parameter range: wider than the guesses' error (roots
-/// of quadratics interpolated in floating point, about the square root of the rounding
-/// at a double root).
+/// refines, as a fraction of the parameter range: far wider than the guess's rounding.
 const GUESS_BRACKET: f64 = 1.0 / (1u64 << 24) as f64;
 
 /// A generator's geometry, for bisectors.
@@ -355,29 +353,24 @@ impl Bisector {
         self.point(from, to, 0.5 * (lo + hi))
     }
 
-    /// [`boundary`](Self::boundary) between the fractions `limits` of the parameter
-    /// range from `from` to `to`, from a close guess (a fraction): the bisection runs in
-    /// a bracket of `±GUESS_BRACKET` around it when the bracket's ends are inside and
-    /// outside, which takes about half the steps; otherwise between the limits.
+    /// [`boundary`](Self::boundary) from a close guess (a fraction of the parameter
+    /// range): the bisection runs in a bracket of `±GUESS_BRACKET` around it when the
+    /// bracket's ends are inside and outside, which takes about half the steps;
+    /// otherwise over the whole range.
     pub(crate) fn boundary_near(
         &self,
         from: Point,
         to: Point,
         guess: f64,
-        limits: (f64, f64),
         inside: impl Fn(Point, f64) -> bool,
     ) -> (Point, f64) {
         let (s0, s1) = self.range(from, to);
-        let at = |lambda: f64| {
-            let lambda = lambda.clamp(limits.0, limits.1);
-            self.point(from, to, s0 + (s1 - s0) * lambda)
-        };
+        let at = |lambda: f64| self.point(from, to, s0 + (s1 - s0) * lambda.clamp(0.0, 1.0));
         let (lo, hi) = (at(guess - GUESS_BRACKET), at(guess + GUESS_BRACKET));
         if guess.is_finite() && inside(lo.0, lo.1) && !inside(hi.0, hi.1) {
             self.boundary(lo.0, hi.0, inside)
         } else {
-            let (a, b) = (at(limits.0), at(limits.1));
-            self.boundary(a.0, b.0, inside)
+            self.boundary(from, to, inside)
         }
     }
 

@@ -325,21 +325,21 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
         }
         if to_ray < span {
             let a = g.vertices[g.edges[e as usize].origin as usize].at;
-            hit = Some((e, a, b, ta, to_ray, span));
+            hit = Some((e, a, b, ta, to_ray));
             break;
         }
     }
-    let Some((e, a, b, ta, to_ray, span)) = hit else {
+    let Some((e, a, b, ta, to_ray)) = hit else {
         return;
     };
     let he = g.edges[e as usize];
     let other = g.faces[g.edges[he.twin as usize].face as usize].gen;
-    // The closed form where it applies and its point is on the edge (rounding at the
-    // edge's ends aside), else bisection.
+    // Bisection from the closed form's point where it applies (it brackets the
+    // crossing), else over the whole edge.
     let bis = sites.bisector(Gen::Point(p), other, a, b);
     let inside = |x: Point, _| turn(ta, angle(x)) < to_ray;
     let (at, t) = match ray_exit(p, c, dir, sites.shape(other)) {
-        Some(s) => bis.boundary_near(a, b, bis.fraction(a, b, c + dir * s), (0.0, 1.0), inside),
+        Some(s) => bis.boundary_near(a, b, bis.fraction(a, b, c + dir * s), inside),
         None => bis.boundary(a, b, inside),
     };
     g.split_edge(e, at, t);
@@ -538,15 +538,12 @@ fn leave_region(
     let Some(k) = pieces.iter().position(|p| !p.claimed) else {
         return bis.boundary(from, to, inside);
     };
-    let limits = (
-        if k == 0 { 0.0 } else { pieces[k - 1].mid() },
-        pieces[k].mid(),
-    );
     if k > 0 && pieces.exact {
-        return bis.boundary_near(from, to, pieces[k].lo, limits, inside);
+        return bis.at_fraction(from, to, pieces[k].lo);
     }
-    let (a, _) = bis.at_fraction(from, to, limits.0);
-    let (b, _) = bis.at_fraction(from, to, limits.1);
+    let lo = if k == 0 { 0.0 } else { pieces[k - 1].mid() };
+    let (a, _) = bis.at_fraction(from, to, lo);
+    let (b, _) = bis.at_fraction(from, to, pieces[k].mid());
     bis.boundary(a, b, inside)
 }
 
@@ -578,9 +575,9 @@ mod tests {
     use super::*;
 
     /// A2's closed form (the start of the first unclaimed piece, a quadratic's root)
-    /// and the vertex refined from it against bisection between the middles of the
-    /// last claimed and the first unclaimed piece, on random point/point, point/segment
-    /// and segment/segment bisectors and a new segment.
+    /// against bisection between the middles of the last claimed and the first
+    /// unclaimed piece, on random point/point, point/segment and segment/segment
+    /// bisectors and a new segment.
     #[test]
     fn leave_region_matches_bisection() {
         let mut seed = 0x0123_4567_89ab_cdefu64;
@@ -606,7 +603,7 @@ mod tests {
             let (from, to) = (point(), point());
             let (a, ta) = bis.at_fraction(from, to, 0.0);
             let (b, tb) = bis.at_fraction(from, to, 1.0);
-            if !(a.x.is_finite() && b.x.is_finite()) || !inside(a, ta) || inside(b, tb) {
+            if !(a.x.is_finite() && b.x.is_finite() && inside(a, ta)) || inside(b, tb) {
                 continue;
             }
             let pieces = site.pieces(&bis, a, b);
@@ -618,11 +615,6 @@ mod tests {
             let (hi, _) = bis.at_fraction(a, b, pieces[k].mid());
             let (y, u) = bis.boundary(lo, hi, inside);
             let scale = 1.0 + a.dist(b);
-            let (root, _) = bis.at_fraction(a, b, pieces[k].lo);
-            assert!(
-                root.dist(y) <= 1e-7 * scale,
-                "case {case}: {root:?} vs {y:?}"
-            );
             assert!(x.dist(y) <= 1e-9 * scale, "case {case}: {x:?} vs {y:?}");
             assert!((t - u).abs() <= 1e-9 * scale, "case {case}: {t} vs {u}");
             checked += 1;

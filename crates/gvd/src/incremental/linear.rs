@@ -604,8 +604,15 @@ fn assemble(
         }
         let mid = (points.len() - 1) / 2;
         let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
-        (inside == (mode == Mode::MedialAxis))
-            .then(|| (clip_polyline(&points, &domain), from, to, sites))
+        (inside == (mode == Mode::MedialAxis)).then(|| {
+            // Most chains lie wholly inside the domain: kept as they are.
+            let pieces = if points.len() >= 2 && points.iter().all(|&p| domain.contains(p)) {
+                vec![(points, false, false)]
+            } else {
+                clip_polyline(&points, &domain)
+            };
+            (pieces, from, to, sites)
+        })
     };
     #[cfg(feature = "parallel")]
     let clipped: Vec<_> = {

@@ -354,24 +354,21 @@ impl Bisector {
     }
 
     /// [`boundary`](Self::boundary) from a close guess (a fraction of the parameter
-    /// range): the bisection runs in a bracket of `±GUESS_BRACKET` around it when the
-    /// bracket's ends are inside and outside, which takes about half the steps;
-    /// otherwise over the whole range.
+    /// range): the bisection runs in a bracket of `±GUESS_BRACKET` around it, which
+    /// takes about half the steps, when the bracket's ends are inside and outside
+    /// (`None` otherwise).
     pub(crate) fn boundary_near(
         &self,
         from: Point,
         to: Point,
         guess: f64,
         inside: impl Fn(Point, f64) -> bool,
-    ) -> (Point, f64) {
+    ) -> Option<(Point, f64)> {
         let (s0, s1) = self.range(from, to);
         let at = |lambda: f64| self.point(from, to, s0 + (s1 - s0) * lambda.clamp(0.0, 1.0));
         let (lo, hi) = (at(guess - GUESS_BRACKET), at(guess + GUESS_BRACKET));
-        if guess.is_finite() && inside(lo.0, lo.1) && !inside(hi.0, hi.1) {
-            self.boundary(lo.0, hi.0, inside)
-        } else {
-            self.boundary(from, to, inside)
-        }
+        (guess.is_finite() && inside(lo.0, lo.1) && !inside(hi.0, hi.1))
+            .then(|| self.boundary(lo.0, hi.0, inside))
     }
 
     /// A polyline from `from` to `to` within `tol` of the bisector.

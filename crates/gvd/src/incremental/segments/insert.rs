@@ -334,14 +334,15 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
     };
     let he = g.edges[e as usize];
     let other = g.faces[g.edges[he.twin as usize].face as usize].gen;
-    // Bisection from the closed form's point where it applies (it brackets the
-    // crossing), else over the whole edge.
+    // Bisection from the closed form's point where it applies and brackets the
+    // crossing (there, near the ray, a point is before it when it lies clockwise of
+    // it), else over the whole edge.
     let bis = sites.bisector(Gen::Point(p), other, a, b);
-    let inside = |x: Point, _| turn(ta, angle(x)) < to_ray;
-    let (at, t) = match ray_exit(p, c, dir, sites.shape(other)) {
-        Some(s) => bis.boundary_near(a, b, bis.fraction(a, b, c + dir * s), inside),
-        None => bis.boundary(a, b, inside),
-    };
+    let near = ray_exit(p, c, dir, sites.shape(other)).and_then(|s| {
+        let guess = bis.fraction(a, b, c + dir * s);
+        bis.boundary_near(a, b, guess, |x, _| dir.cross(x - c) < 0.0)
+    });
+    let (at, t) = near.unwrap_or_else(|| bis.boundary(a, b, |x, _| turn(ta, angle(x)) < to_ray));
     g.split_edge(e, at, t);
 }
 

@@ -803,7 +803,14 @@ fn assemble(
         let mid = (points.len() - 1) / 2;
         let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
         (inside == (mode == Mode::MedialAxis)).then(|| {
-            let pieces = clip_polyline(&points, &domain)
+            // Most chains lie wholly inside the domain: kept as they are.
+            let whole = points.len() >= 2 && points.iter().all(|&p| domain.contains(p));
+            let pieces = if whole {
+                vec![(points, false, false, 0)]
+            } else {
+                clip_polyline(&points, &domain)
+            };
+            let pieces = pieces
                 .into_iter()
                 .map(|(piece, start_cut, end_cut, first)| {
                     let form = if bisectors {

@@ -134,6 +134,37 @@ impl Clearance {
     }
 }
 
+/// Where the ray `p + s·dir` (unit `dir`, `s > 0`) from point generator `p` meets the
+/// bisector of `p` and `other`: a point on the ray is at clearance `s` from `p`, so
+///
+/// * another point `q`: `s² = |p + s·dir − q|²` gives `s = |q − p|² / (2 dir·(q − p))`;
+/// * a segment's line (`p` at signed offset `h_p`, `σ = sign h_p`): the offset
+///   `h_p + s·(n·dir)` equals `σ·s` on the parabola, so `s = |h_p| / (1 − σ n·dir)`.
+///
+/// `None` when the ray misses the bisector, for an arc, and when `p` is an end of the
+/// segment or lies on its line (the bisector is then not a parabola).
+pub(crate) fn ray_exit(id: u32, p: Point, dir: Point, other: Shape) -> Option<f64> {
+    let s = match other {
+        Shape::Point(_, q) => {
+            let v = q - p;
+            v.dot(v) / (2.0 * dir.dot(v))
+        }
+        Shape::Segment(l) => {
+            let (up, hp) = l.coords(p);
+            if l.ends.contains(&id) || hp.abs() <= 1e-12 * (l.len + up.abs()) {
+                return None;
+            }
+            hp.abs() / (1.0 - l.n.dot(dir) * hp.signum())
+        }
+        Shape::Arc(_) => return None,
+    };
+    (s > 0.0 && s.is_finite()).then_some(s)
+}
+
+/// Half the bracket around a closed form's guess that [`Bisector::boundary_near`]
+/// refines, as a fraction of the parameter range: far wider than the guess's rounding.
+const GUESS_BRACKET: f64 = 1.0 / (1u64 << 24) as f64;
+
 /// A generator's geometry, for bisectors.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Shape<'a> {
@@ -274,6 +305,18 @@ impl Bisector {
         self.point(from, to, s0 + (s1 - s0) * lambda)
     }
 
+    /// The fraction of the parameter range from `from` to `to` at `x` (a point of the
+    /// bisector); NaN for chords.
+    pub(crate) fn fraction(&self, from: Point, to: Point, x: Point) -> f64 {
+        match self {
+            Bisector::Chord { .. } => f64::NAN,
+            _ => {
+                let (s0, s1) = self.range(from, to);
+                (self.param(x) - s0) / (s1 - s0)
+            }
+        }
+    }
+
     fn range(&self, from: Point, to: Point) -> (f64, f64) {
         match self {
             Bisector::Chord { .. } => (0.0, 1.0),
@@ -308,6 +351,24 @@ impl Bisector {
             }
         }
         self.point(from, to, 0.5 * (lo + hi))
+    }
+
+    /// [`boundary`](Self::boundary) from a close guess (a fraction of the parameter
+    /// range): the bisection runs in a bracket of `±GUESS_BRACKET` around it, which
+    /// takes about half the steps, when the bracket's ends are inside and outside
+    /// (`None` otherwise).
+    pub(crate) fn boundary_near(
+        &self,
+        from: Point,
+        to: Point,
+        guess: f64,
+        inside: impl Fn(Point, f64) -> bool,
+    ) -> Option<(Point, f64)> {
+        let (s0, s1) = self.range(from, to);
+        let at = |lambda: f64| self.point(from, to, s0 + (s1 - s0) * lambda.clamp(0.0, 1.0));
+        let (lo, hi) = (at(guess - GUESS_BRACKET), at(guess + GUESS_BRACKET));
+        (guess.is_finite() && inside(lo.0, lo.1) && !inside(hi.0, hi.1))
+            .then(|| self.boundary(lo.0, hi.0, inside))
     }
 
     /// A polyline from `from` to `to` within `tol` of the bisector.
@@ -351,5 +412,74 @@ impl Bisector {
                 pts
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rng(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// The closed form of `ray_exit` against bisection on the ray of the sign of
+    /// `|x − p| − d(x, other)` (the distance to another point, or to a segment's line),
+    /// for random points, segments and directions.
+    #[test]
+    fn ray_exit_matches_bisection() {
+        let mut rnd = rng(0x51f1_5e55_0ddb_a11d);
+        let mut checked = 0;
+        for case in 0..2000 {
+            let mut point = || Point::new(rnd(), rnd());
+            let (p, q) = (point(), point());
+            let line = Line::new(point(), point(), [1, 2]);
+            let a = std::f64::consts::TAU * rnd();
+            let dir = Point::new(a.cos(), a.sin());
+            let (shape, other): (Shape, Box<dyn Fn(Point) -> f64>) = if case % 2 == 0 {
+                (Shape::Point(1, q), Box::new(move |x: Point| x.dist(q)))
+            } else {
+                (
+                    Shape::Segment(&line),
+                    Box::new(move |x: Point| line.coords(x).1.abs()),
+                )
+            };
+            let f = |s: f64| {
+                let x = p + dir * s;
+                x.dist(p) - other(x)
+            };
+            let exit = ray_exit(0, p, dir, shape);
+            // Nearer to p at the start; the ray meets the bisector if it ends nearer to
+            // the other generator within a long reach.
+            let reach = 1e4;
+            if f(reach) <= 0.0 {
+                assert!(
+                    exit.is_none_or(|s| s > 0.5 * reach),
+                    "case {case}: {exit:?}"
+                );
+                continue;
+            }
+            let s = exit.unwrap_or_else(|| panic!("case {case}: no exit"));
+            let (mut lo, mut hi) = (0.0, reach);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if f(mid) < 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            assert!(
+                (s - lo).abs() <= 1e-9 * (1.0 + lo),
+                "case {case}: {s} vs {lo}"
+            );
+            checked += 1;
+        }
+        assert!(checked > 1000, "{checked}");
     }
 }

@@ -15,8 +15,8 @@
 //! * A2: on every edge from `T` to a vertex out of `T`, the new vertex is the point of
 //!   the edge's bisector where it leaves the segment's region: where the clearance
 //!   equals the distance to the segment, or where the foot leaves the segment (the
-//!   endpoints' separators), found by bisection along the bisector's offset-parameter
-//!   form.
+//!   endpoints' separators): a root of a quadratic in the bisector's parameter
+//!   (`pieces.rs`), by bisection where the pieces are sampled (conics of arcs).
 //! * A3, A4: on every old face that meets `T`, each chain of `T` vertices is replaced
 //!   by one new edge (the bisector of the face's generator and the segment); the twins of
 //!   the new edges form the segment's face; `T` and its edges are deleted.
@@ -24,7 +24,7 @@
 //! Every decision that shapes the graph is combinatorial, so the graph stays a valid
 //! planar map whatever the rounding; geometry near exact ties is within rounding.
 
-use super::geometry::{Arc, Bisector, Gen, Line, Shape};
+use super::geometry::{ray_exit, Arc, Bisector, Gen, Line, Shape};
 use super::graph::{Graph, GHOST, NONE};
 use super::site::NewSite;
 use crate::geom::Point;
@@ -309,15 +309,22 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
     let turn = |from: f64, to: f64| (to - from).rem_euclid(std::f64::consts::TAU);
     let angle = |x: Point| (x.y - c.y).atan2(x.x - c.x);
     let mut hit = None;
+    let first = g.faces[p as usize].edge;
+    if first == NONE {
+        return;
+    }
+    // The angle of each edge's origin is the previous edge's target's.
+    let mut tb = angle(g.vertices[g.edges[first as usize].origin as usize].at);
     for e in g.cycle(p) {
-        let a = g.vertices[g.edges[e as usize].origin as usize].at;
+        let ta = tb;
         let b = g.vertices[g.target(e) as usize].at;
-        let (ta, tb) = (angle(a), angle(b));
+        tb = angle(b);
         let (span, to_ray) = (turn(ta, tb), turn(ta, phi));
         if to_ray == 0.0 {
             return;
         }
         if to_ray < span {
+            let a = g.vertices[g.edges[e as usize].origin as usize].at;
             hit = Some((e, a, b, ta, to_ray));
             break;
         }
@@ -326,9 +333,16 @@ fn split_behind(g: &mut Graph, sites: &Sites, p: u32, dir: Point) {
         return;
     };
     let he = g.edges[e as usize];
-    let other = g.edges[he.twin as usize].face;
-    let bis = sites.bisector(Gen::Point(p), g.faces[other as usize].gen, a, b);
-    let (at, t) = bis.boundary(a, b, |x, _| turn(ta, angle(x)) < to_ray);
+    let other = g.faces[g.edges[he.twin as usize].face as usize].gen;
+    // Bisection from the closed form's point where it applies and brackets the
+    // crossing (there, near the ray, a point is before it when it lies clockwise of
+    // it), else over the whole edge.
+    let bis = sites.bisector(Gen::Point(p), other, a, b);
+    let near = ray_exit(p, c, dir, sites.shape(other)).and_then(|s| {
+        let guess = bis.fraction(a, b, c + dir * s);
+        bis.boundary_near(a, b, guess, |x, _| dir.cross(x - c) < 0.0)
+    });
+    let (at, t) = near.unwrap_or_else(|| bis.boundary(a, b, |x, _| turn(ta, angle(x)) < to_ray));
     g.split_edge(e, at, t);
 }
 
@@ -492,9 +506,9 @@ fn split_unclaimed_edges(
         let left = g.faces[g.edges[e as usize].face as usize].gen;
         let right = g.faces[g.edges[g.edges[e as usize].twin as usize].face as usize].gen;
         let bis = sites.bisector(left, right, from, to);
-        let unclaimed = site
-            .pieces(&bis, from, to)
-            .into_iter()
+        let pieces = site.pieces(&bis, from, to);
+        let unclaimed = pieces
+            .iter()
             .filter(|p| !p.claimed)
             .max_by(|a, b| (a.hi - a.lo).total_cmp(&(b.hi - b.lo)));
         if let Some(piece) = unclaimed {
@@ -508,9 +522,12 @@ fn split_unclaimed_edges(
 }
 
 /// A2's new vertex on the edge from `from` (in `T`) to `to` (out of it): where the
-/// bisector first leaves the segment's region, refined by bisection between the middles
-/// of the last claimed and the first unclaimed piece; by bisection over the whole edge
-/// when rounding hid the unclaimed piece (`to` if it is claimed too: topology wins).
+/// bisector first leaves the segment's region. Where the pieces are exact, that is the
+/// start of the first unclaimed piece, a root of one of the quadratics of `pieces.rs`;
+/// otherwise (sampled pieces, or an unclaimed first piece: rounding at `from`) by
+/// bisection between the middles of the last claimed and the first unclaimed piece; by
+/// bisection over the whole edge when rounding hid the unclaimed piece (`to` if it is
+/// claimed too: topology wins).
 fn leave_region(
     bis: &Bisector,
     from: Point,
@@ -522,6 +539,9 @@ fn leave_region(
     let Some(k) = pieces.iter().position(|p| !p.claimed) else {
         return bis.boundary(from, to, inside);
     };
+    if k > 0 && pieces.exact {
+        return bis.at_fraction(from, to, pieces[k].lo);
+    }
     let lo = if k == 0 { 0.0 } else { pieces[k - 1].mid() };
     let (a, _) = bis.at_fraction(from, to, lo);
     let (b, _) = bis.at_fraction(from, to, pieces[k].mid());
@@ -548,5 +568,58 @@ fn tree_test(g: &Graph, v: u32, sc: &Scratch) -> TreeTest {
         0 => TreeTest::Detached,
         1 => TreeTest::Ok,
         _ => TreeTest::Cycle,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A2's closed form (the start of the first unclaimed piece, a quadratic's root)
+    /// against bisection between the middles of the last claimed and the first
+    /// unclaimed piece, on random point/point, point/segment and segment/segment
+    /// bisectors and a new segment.
+    #[test]
+    fn leave_region_matches_bisection() {
+        let mut seed = 0x0123_4567_89ab_cdefu64;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let site = Line::new(Point::new(0.3, 0.4), Point::new(0.7, 0.55), [0, 1]);
+        let inside = |x: Point, t: f64| site.claims(x, t);
+        let mut checked = 0;
+        for case in 0..3000 {
+            let mut point = || Point::new(rnd(), rnd());
+            let (p, q) = (point(), point());
+            let other = Line::new(point(), point(), [4, 5]);
+            let third = Line::new(point(), point(), [6, 7]);
+            let bis = match case % 3 {
+                0 => Bisector::of(Shape::Point(2, p), Shape::Point(3, q), p),
+                1 => Bisector::of(Shape::Point(2, p), Shape::Segment(&other), p),
+                _ => Bisector::of(Shape::Segment(&third), Shape::Segment(&other), p),
+            };
+            let (from, to) = (point(), point());
+            let (a, ta) = bis.at_fraction(from, to, 0.0);
+            let (b, tb) = bis.at_fraction(from, to, 1.0);
+            if !(a.x.is_finite() && b.x.is_finite() && inside(a, ta)) || inside(b, tb) {
+                continue;
+            }
+            let pieces = site.pieces(&bis, a, b);
+            let Some(k) = pieces.iter().position(|p| !p.claimed).filter(|&k| k > 0) else {
+                continue;
+            };
+            let (x, t) = leave_region(&bis, a, b, &site, inside);
+            let (lo, _) = bis.at_fraction(a, b, pieces[k - 1].mid());
+            let (hi, _) = bis.at_fraction(a, b, pieces[k].mid());
+            let (y, u) = bis.boundary(lo, hi, inside);
+            let scale = 1.0 + a.dist(b);
+            assert!(x.dist(y) <= 1e-9 * scale, "case {case}: {x:?} vs {y:?}");
+            assert!((t - u).abs() <= 1e-9 * scale, "case {case}: {t} vs {u}");
+            checked += 1;
+        }
+        assert!(checked > 200, "{checked}");
     }
 }

@@ -8,7 +8,8 @@
 //! * parabolas: `x`, `t`, `f` and `h` are quadratics; `|h| < t` changes where
 //!   `t − h` or `t + h` vanishes;
 //! * lines (and chords): `x`, `f` and `h` are linear and `t²` is quadratic; `|h| < t`
-//!   changes where `h² − t²` vanishes.
+//!   changes where `h² − t²` vanishes (not for a chord along an arc's circle, whose
+//!   clearance is the distance to the circle: those pieces are not exact).
 //!
 //! So the claim can only change at roots of a few quadratics, each interpolated from
 //! three samples; every interval between consecutive roots is then tested at its middle
@@ -34,29 +35,60 @@ impl Piece {
     }
 }
 
+/// The pieces of a bisector, in order, and whether their ends are the roots of the
+/// quadratics (to rounding) rather than a sampling's midpoints.
+#[derive(Debug)]
+pub(crate) struct Pieces {
+    list: Vec<Piece>,
+    pub(crate) exact: bool,
+}
+
+impl std::ops::Deref for Pieces {
+    type Target = [Piece];
+    fn deref(&self) -> &[Piece] {
+        &self.list
+    }
+}
+
 /// The maximal claimed and unclaimed intervals of the bisector piece from `from` to
 /// `to`, in order from `from`, for a new segment `line`.
-pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line) -> Vec<Piece> {
+pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line) -> Pieces {
     let claims = |x: Point, t: f64| line.claims(x, t);
     let sample = |lambda: f64| {
         let (x, t) = bis.at_fraction(from, to, lambda);
         let (f, h) = line.coords(x);
         (f, h, t)
     };
+    if let Bisector::Conic(_) = bis {
+        return sampled_pieces(bis, from, to, claims);
+    }
     let s = [sample(0.0), sample(0.5), sample(1.0)];
     let quad = |value: &dyn Fn((f64, f64, f64)) -> f64| interpolate(s.map(value));
-    let mut quads = vec![quad(&|(f, _, _)| f), quad(&|(f, _, _)| f - line.len)];
+    let (foot, end) = (quad(&|(f, _, _)| f), quad(&|(f, _, _)| f - line.len));
     match bis {
-        Bisector::Conic(_) => return sampled_pieces(bis, from, to, claims),
         Bisector::Parabola { .. } => {
-            quads.push(quad(&|(_, h, t)| t - h));
-            quads.push(quad(&|(_, h, t)| t + h));
+            let quads = [
+                foot,
+                end,
+                quad(&|(_, h, t)| t - h),
+                quad(&|(_, h, t)| t + h),
+            ];
+            pieces_between_roots(bis, from, to, &quads, claims)
         }
-        Bisector::Line { .. } | Bisector::Chord { .. } => {
-            quads.push(quad(&|(_, h, t)| h * h - t * t));
+        _ => {
+            let quads = [foot, end, quad(&|(_, h, t)| h * h - t * t)];
+            let mut pieces = pieces_between_roots(bis, from, to, &quads, claims);
+            // A chord's clearance to a circle is not polynomial: the roots are only
+            // where the middles tell the claim.
+            if let Bisector::Chord {
+                clearance: Clearance::Circle { .. },
+            } = bis
+            {
+                pieces.exact = false;
+            }
+            pieces
         }
     }
-    pieces_between_roots(bis, from, to, &quads, claims)
 }
 
 /// The same for a new arc `(c, r)` with wedge `a0 < ∠(x − c) < a0 + span`, exact on
@@ -68,7 +100,7 @@ pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line
 ///   signed offset `t = ±h`, `|x − c|² − (r ± h)² = 0` are two quadratics.
 ///
 /// Conics and parabolas are sampled.
-pub(crate) fn arc_pieces(bis: &Bisector, from: Point, to: Point, arc: &Arc) -> Vec<Piece> {
+pub(crate) fn arc_pieces(bis: &Bisector, from: Point, to: Point, arc: &Arc) -> Pieces {
     let claims = |x: Point, t: f64| arc.claims(x, t);
     let clearance = match bis {
         Bisector::Line { clearance, .. } | Bisector::Chord { clearance } => *clearance,
@@ -76,65 +108,80 @@ pub(crate) fn arc_pieces(bis: &Bisector, from: Point, to: Point, arc: &Arc) -> V
     };
     let sides = [arc.a0, arc.a0 + arc.span].map(|a| Point::new(a.cos(), a.sin()));
     let x = [0.0, 0.5, 1.0].map(|l| bis.at_fraction(from, to, l));
-    let mut quads: Vec<[f64; 3]> = sides
-        .iter()
-        .map(|e| interpolate(x.map(|(q, _)| e.cross(q - arc.c))))
-        .collect();
+    let [s0, s1] = sides.map(|e| interpolate(x.map(|(q, _)| e.cross(q - arc.c))));
     let r = arc.r;
     match clearance {
-        Clearance::Point(p) => quads.push(interpolate(x.map(|(q, _)| {
-            let t2 = q.dist2(p);
-            let d = q.dist2(arc.c) - t2 - r * r;
-            d * d - 4.0 * r * r * t2
-        }))),
+        Clearance::Point(p) => {
+            let circle = interpolate(x.map(|(q, _)| {
+                let t2 = q.dist2(p);
+                let d = q.dist2(arc.c) - t2 - r * r;
+                d * d - 4.0 * r * r * t2
+            }));
+            pieces_between_roots(bis, from, to, &[s0, s1, circle], claims)
+        }
         Clearance::Line(l) => {
-            for sign in [1.0, -1.0] {
-                quads.push(interpolate(x.map(|(q, _)| {
+            let [c0, c1] = [1.0, -1.0].map(|sign| {
+                interpolate(x.map(|(q, _)| {
                     let h = l.coords(q).1;
                     q.dist2(arc.c) - (r + sign * h) * (r + sign * h)
-                })));
-            }
+                }))
+            });
+            pieces_between_roots(bis, from, to, &[s0, s1, c0, c1], claims)
         }
-        Clearance::Circle { .. } => return sampled_pieces(bis, from, to, claims),
+        Clearance::Circle { .. } => sampled_pieces(bis, from, to, claims),
     }
-    pieces_between_roots(bis, from, to, &quads, claims)
 }
 
-/// Pieces split at the roots in `(0, 1)` of the quadratics `quads` (coefficients of
-/// `λ⁰, λ¹, λ²`), each tested at its middle with `claims`.
+/// At most four quadratics: up to two roots and an extremum each, and both ends.
+const MAX_BREAKS: usize = 4 * 3 + 2;
+
+/// Pieces split at the roots in `(0, 1)` of the (at most four) quadratics `quads`
+/// (coefficients of `λ⁰, λ¹, λ²`), each tested at its middle with `claims`.
 fn pieces_between_roots(
     bis: &Bisector,
     from: Point,
     to: Point,
     quads: &[[f64; 3]],
     claims: impl Fn(Point, f64) -> bool,
-) -> Vec<Piece> {
-    let mut breaks: Vec<f64> = Vec::with_capacity(2 * quads.len() + 2);
-    let mut extrema: Vec<f64> = Vec::with_capacity(quads.len());
-    for &c in quads {
-        breaks.extend(
-            quadratic_roots(c)
-                .into_iter()
-                .filter(|r| *r > 0.0 && *r < 1.0),
-        );
+) -> Pieces {
+    let mut breaks = [0.0f64; MAX_BREAKS];
+    let mut extrema = [f64::NAN; 4];
+    let mut n = 0;
+    for (k, &c) in quads.iter().enumerate() {
+        let (roots, count) = quadratic_roots(c);
+        for &r in &roots[..count] {
+            if r > 0.0 && r < 1.0 {
+                breaks[n] = r;
+                n += 1;
+            }
+        }
         // Two roots closer than rounding can resolve (a piece narrower than about
         // 1e-8 of the edge) leave no break: the extremum between them is tested too.
         let top = -c[1] / (2.0 * c[2]);
         if top > 0.0 && top < 1.0 {
-            extrema.push(top);
+            extrema[k] = top;
+            breaks[n] = top;
+            n += 1;
         }
     }
-    breaks.extend_from_slice(&extrema);
-    breaks.push(0.0);
-    breaks.push(1.0);
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
+    breaks[n] = 0.0;
+    breaks[n + 1] = 1.0;
+    let breaks = &mut breaks[..n + 2];
+    breaks.sort_unstable_by(f64::total_cmp);
+    let mut m = 1;
+    for k in 1..breaks.len() {
+        if breaks[k] != breaks[m - 1] {
+            breaks[m] = breaks[k];
+            m += 1;
+        }
+    }
+    let breaks = &breaks[..m];
 
     let claims_at = |lambda: f64| {
         let (x, t) = bis.at_fraction(from, to, lambda);
         claims(x, t)
     };
-    let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len());
+    let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len() + 2);
     let mut push = |lo: f64, hi: f64, claimed: bool| match pieces.last_mut() {
         Some(last) if last.claimed == claimed => last.hi = hi,
         _ => pieces.push(Piece { lo, hi, claimed }),
@@ -146,7 +193,10 @@ fn pieces_between_roots(
         }
         push(w[0], w[1], claims_at(0.5 * (w[0] + w[1])));
     }
-    pieces
+    Pieces {
+        list: pieces,
+        exact: true,
+    }
 }
 
 /// Fractions sampled where the claim is not polynomial in the fraction (conics of
@@ -160,7 +210,7 @@ pub(crate) fn sampled_pieces(
     from: Point,
     to: Point,
     claims: impl Fn(Point, f64) -> bool,
-) -> Vec<Piece> {
+) -> Pieces {
     let claim_at = |lambda: f64| {
         let (x, t) = bis.at_fraction(from, to, lambda);
         claims(x, t)
@@ -174,7 +224,10 @@ pub(crate) fn sampled_pieces(
             _ => pieces.push(Piece { lo, hi, claimed }),
         }
     }
-    pieces
+    Pieces {
+        list: pieces,
+        exact: false,
+    }
 }
 
 /// The coefficients `[c0, c1, c2]` of the quadratic through `(0, y0)`, `(½, y½)`,
@@ -184,28 +237,29 @@ fn interpolate([y0, yh, y1]: [f64; 3]) -> [f64; 3] {
 }
 
 /// The real roots of `c0 + c1·λ + c2·λ²` (a leading coefficient negligible against the
-/// others makes it linear), by the cancellation-free formula.
-fn quadratic_roots([c0, c1, c2]: [f64; 3]) -> Vec<f64> {
+/// others makes it linear), by the cancellation-free formula: the first `count` of the
+/// pair.
+fn quadratic_roots([c0, c1, c2]: [f64; 3]) -> ([f64; 2], usize) {
     let scale = c0.abs().max(c1.abs()).max(c2.abs());
     if scale == 0.0 || !scale.is_finite() {
-        return Vec::new();
+        return ([0.0; 2], 0);
     }
     if c2.abs() <= 1e-12 * scale {
         return if c1 != 0.0 {
-            vec![-c0 / c1]
+            ([-c0 / c1, 0.0], 1)
         } else {
-            Vec::new()
+            ([0.0; 2], 0)
         };
     }
     let disc = c1 * c1 - 4.0 * c2 * c0;
     if disc < 0.0 {
-        return Vec::new();
+        return ([0.0; 2], 0);
     }
     let q = -0.5 * (c1 + disc.sqrt().copysign(c1));
     if q == 0.0 {
-        return vec![0.0];
+        return ([0.0; 2], 1);
     }
-    vec![q / c2, c0 / q]
+    ([q / c2, c0 / q], 2)
 }
 
 #[cfg(test)]
@@ -215,11 +269,15 @@ mod tests {
 
     #[test]
     fn roots_of_quadratics() {
-        let mut r = quadratic_roots([2.0, -3.0, 1.0]);
-        r.sort_by(f64::total_cmp);
-        assert_eq!(r, vec![1.0, 2.0]);
-        assert_eq!(quadratic_roots([1.0, 0.0, 1.0]), Vec::<f64>::new());
-        assert_eq!(quadratic_roots([-1.0, 2.0, 0.0]), vec![0.5]);
+        let roots = |c| {
+            let (r, n) = quadratic_roots(c);
+            let mut r = r[..n].to_vec();
+            r.sort_by(f64::total_cmp);
+            r
+        };
+        assert_eq!(roots([2.0, -3.0, 1.0]), vec![1.0, 2.0]);
+        assert_eq!(roots([1.0, 0.0, 1.0]), Vec::<f64>::new());
+        assert_eq!(roots([-1.0, 2.0, 0.0]), vec![0.5]);
     }
 
     /// A point 1e-7 from the segment keeps a needle about 1e-4 wide around it; the
@@ -272,7 +330,7 @@ mod tests {
                 continue;
             }
             let pieces = claimed_pieces(&bis, a, b, &line);
-            for piece in &pieces {
+            for piece in pieces.iter() {
                 for k in 1..200 {
                     let lambda = piece.lo + (piece.hi - piece.lo) * k as f64 / 200.0;
                     let (x, t) = bis.at_fraction(a, b, lambda);
@@ -327,7 +385,7 @@ mod tests {
                 continue;
             }
             let pieces = arc_pieces(&bis, a, b, &arc);
-            for piece in &pieces {
+            for piece in pieces.iter() {
                 for k in 1..200 {
                     let lambda = piece.lo + (piece.hi - piece.lo) * k as f64 / 200.0;
                     let (x, t) = bis.at_fraction(a, b, lambda);

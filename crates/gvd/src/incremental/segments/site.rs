@@ -2,7 +2,7 @@
 //! the same way, an open arc), with its two endpoints already in the diagram.
 
 use super::geometry::{Arc, Bisector, Line};
-use super::pieces::{arc_pieces, claimed_pieces, Piece};
+use super::pieces::{arc_pieces, claimed_pieces, Pieces};
 use crate::geom::Point;
 
 pub(crate) trait NewSite {
@@ -20,7 +20,7 @@ pub(crate) trait NewSite {
     /// A signed function of `x` vanishing on the site's supporting curve.
     fn side(&self, x: Point) -> f64;
     /// The claimed and unclaimed intervals of a bisector piece (see `pieces.rs`).
-    fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Vec<Piece>;
+    fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Pieces;
 }
 
 impl NewSite for Line {
@@ -43,7 +43,7 @@ impl NewSite for Line {
     fn side(&self, x: Point) -> f64 {
         self.coords(x).1
     }
-    fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Vec<Piece> {
+    fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Pieces {
         claimed_pieces(bis, from, to, self)
     }
 }
@@ -71,7 +71,7 @@ impl NewSite for Arc {
     fn side(&self, x: Point) -> f64 {
         x.dist(self.c) - self.r
     }
-    fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Vec<Piece> {
+    fn pieces(&self, bis: &Bisector, from: Point, to: Point) -> Pieces {
         arc_pieces(bis, from, to, self)
     }
 }

@@ -20,6 +20,22 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
+/// Runs `gvd compute SCENE ARGS...` (a scene of `examples/scenes`) and asserts success.
+fn compute_ok(scene: &str, args: &[&std::ffi::OsStr]) {
+    let scene = repo("examples/scenes").join(scene);
+    let out = gvd()
+        .arg("compute")
+        .arg(&scene)
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 #[test]
 fn compute_writes_a_diagram_that_verifies() {
     let scene = repo("examples/scenes/points-mixed-0030.json");
@@ -175,20 +191,9 @@ fn output_into_a_fifo_keeps_the_fifo() {
         let fifo = fifo.clone();
         std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
     };
-    let scene = repo("examples/scenes/points-mixed-0030.json");
-    let out = gvd()
-        .args([
-            "compute",
-            scene.to_str().unwrap(),
-            "--json",
-            fifo.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    compute_ok(
+        "points-mixed-0030.json",
+        &["--json".as_ref(), fifo.as_ref()],
     );
     // Checked before joining: a reader left on a replaced FIFO would wait forever.
     assert!(std::fs::symlink_metadata(&fifo)
@@ -209,21 +214,7 @@ fn output_through_a_symlink_replaces_the_target() {
     let _ = std::fs::remove_file(&link);
     std::fs::write(&target, "old").unwrap();
     std::os::unix::fs::symlink(&target, &link).unwrap();
-    let scene = repo("examples/scenes/points-mixed-0030.json");
-    let out = gvd()
-        .args([
-            "compute",
-            scene.to_str().unwrap(),
-            "--svg",
-            link.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    compute_ok("points-mixed-0030.json", &["--svg".as_ref(), link.as_ref()]);
     assert!(std::fs::symlink_metadata(&link)
         .unwrap()
         .file_type()
@@ -236,25 +227,11 @@ fn output_through_a_symlink_replaces_the_target() {
 /// `--bisectors` adds each edge's exact bisector to the JSON (and only when asked).
 #[test]
 fn bisectors_flag_adds_offset_forms() {
-    let scene = repo("examples/scenes/slot-pocket.json");
     let json = scratch("slot-bisectors.json");
-    for (flag, expected) in [(false, false), (true, true)] {
-        let mut cmd = gvd();
-        cmd.args([
-            "compute",
-            scene.to_str().unwrap(),
-            "--json",
-            json.to_str().unwrap(),
-        ]);
-        if flag {
-            cmd.arg("--bisectors");
-        }
-        let out = cmd.output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+    for (flag, expected) in [(None, false), (Some("--bisectors"), true)] {
+        let mut args = vec!["--json".as_ref(), json.as_os_str()];
+        args.extend(flag.map(std::ffi::OsStr::new));
+        compute_ok("slot-pocket.json", &args);
         let d: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         let with = d["edges"]
@@ -263,10 +240,6 @@ fn bisectors_flag_adds_offset_forms() {
             .iter()
             .filter(|e| e.get("bisector").is_some())
             .count();
-        assert_eq!(
-            with > 0,
-            expected,
-            "--bisectors {flag}: {with} edges with a bisector"
-        );
+        assert_eq!(with > 0, expected, "{flag:?}: {with} edges with a bisector");
     }
 }

@@ -415,11 +415,13 @@ impl Bisector {
     }
 }
 
+/// Random inputs for the engine's unit tests.
 #[cfg(test)]
-mod tests {
+pub(crate) mod testing {
     use super::*;
 
-    fn rng(mut seed: u64) -> impl FnMut() -> f64 {
+    /// Uniform numbers in [0, 1) from a xorshift generator.
+    pub(crate) fn rng(mut seed: u64) -> impl FnMut() -> f64 {
         move || {
             seed ^= seed << 13;
             seed ^= seed >> 7;
@@ -427,6 +429,28 @@ mod tests {
             (seed >> 11) as f64 / (1u64 << 53) as f64
         }
     }
+
+    /// A bisector of kind `case % 3`: points `p` and `q`, point `p` and segment
+    /// `other`, segments `third` and `other`.
+    pub(crate) fn linear_bisector(
+        case: usize,
+        p: Point,
+        q: Point,
+        other: &Line,
+        third: &Line,
+    ) -> Bisector {
+        match case % 3 {
+            0 => Bisector::of(Shape::Point(2, p), Shape::Point(3, q), p),
+            1 => Bisector::of(Shape::Point(2, p), Shape::Segment(other), p),
+            _ => Bisector::of(Shape::Segment(third), Shape::Segment(other), p),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::testing::rng;
+    use super::*;
 
     /// The closed form of `ray_exit` against bisection on the ray of the sign of
     /// `|x − p| − d(x, other)` (the distance to another point, or to a segment's line),

@@ -574,6 +574,7 @@ fn tree_test(g: &Graph, v: u32, sc: &Scratch) -> TreeTest {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::incremental::segments::geometry::testing::{linear_bisector, rng};
 
     /// A2's closed form (the start of the first unclaimed piece, a quadratic's root)
     /// against bisection between the middles of the last claimed and the first
@@ -581,13 +582,7 @@ mod tests {
     /// bisectors and a new segment.
     #[test]
     fn leave_region_matches_bisection() {
-        let mut seed = 0x0123_4567_89ab_cdefu64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = rng(0x0123_4567_89ab_cdefu64);
         let site = Line::new(Point::new(0.3, 0.4), Point::new(0.7, 0.55), [0, 1]);
         let inside = |x: Point, t: f64| site.claims(x, t);
         let mut checked = 0;
@@ -596,11 +591,7 @@ mod tests {
             let (p, q) = (point(), point());
             let other = Line::new(point(), point(), [4, 5]);
             let third = Line::new(point(), point(), [6, 7]);
-            let bis = match case % 3 {
-                0 => Bisector::of(Shape::Point(2, p), Shape::Point(3, q), p),
-                1 => Bisector::of(Shape::Point(2, p), Shape::Segment(&other), p),
-                _ => Bisector::of(Shape::Segment(&third), Shape::Segment(&other), p),
-            };
+            let bis = linear_bisector(case, p, q, &other, &third);
             let (from, to) = (point(), point());
             let (a, ta) = bis.at_fraction(from, to, 0.0);
             let (b, tb) = bis.at_fraction(from, to, 1.0);

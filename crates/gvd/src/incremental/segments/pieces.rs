@@ -265,6 +265,7 @@ fn quadratic_roots([c0, c1, c2]: [f64; 3]) -> ([f64; 2], usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::incremental::segments::geometry::testing::{linear_bisector, rng};
     use crate::incremental::segments::geometry::Shape;
 
     #[test]
@@ -303,13 +304,7 @@ mod tests {
     /// inside each piece agree with its claim.
     #[test]
     fn pieces_agree_with_dense_samples() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = rng(0x2545_f491_4f6c_dd1du64);
         let mut point = || Point::new(rnd(), rnd());
         let line = Line::new(Point::new(0.3, 0.4), Point::new(0.7, 0.55), [0, 1]);
         let mut checked = 0;
@@ -317,11 +312,7 @@ mod tests {
             let (p, q) = (point(), point());
             let other = Line::new(point(), point(), [4, 5]);
             let third = Line::new(point(), point(), [6, 7]);
-            let bis = match case % 3 {
-                0 => Bisector::of(Shape::Point(2, p), Shape::Point(3, q), p),
-                1 => Bisector::of(Shape::Point(2, p), Shape::Segment(&other), p),
-                _ => Bisector::of(Shape::Segment(&third), Shape::Segment(&other), p),
-            };
+            let bis = linear_bisector(case, p, q, &other, &third);
             let (from, to) = (point(), point());
             // Project the ends onto the bisector through its own parametrization.
             let (a, _) = bis.at_fraction(from, to, 0.0);
@@ -353,13 +344,7 @@ mod tests {
     /// roots).
     #[test]
     fn arc_pieces_agree_with_dense_samples() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = rng(0x9e37_79b9_7f4a_7c15u64);
         let mut checked = 0;
         for case in 0..300 {
             let arc = Arc::new(

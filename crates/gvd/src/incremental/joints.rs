@@ -25,6 +25,15 @@ use std::collections::HashMap;
 /// rounding of the ends' and tangents' coordinates.
 const TANGENT_TOL: f64 = 1e-9;
 
+/// A tangent joint: its two features, where it is, and the unit normal there (the
+/// direction of the edge between the features).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Joint {
+    features: [Gen; 2],
+    at: Point,
+    normal: Point,
+}
+
 /// The tangent joints: each point generator that ends exactly two features whose
 /// unit directions away from it `a₁`, `a₂` satisfy `|a₁ + a₂| ≤ TANGENT_TOL`, with
 /// those two features.
@@ -32,7 +41,7 @@ pub(super) fn tangent_joints(
     points: &[Point],
     segments: &[[u32; 2]],
     arcs: &[ArcSpec],
-) -> HashMap<u32, [Gen; 2]> {
+) -> HashMap<u32, Joint> {
     let mut at: HashMap<u32, Vec<(Gen, Point)>> = HashMap::new();
     for (k, &[a, b]) in segments.iter().enumerate() {
         let d = points[b as usize] - points[a as usize];
@@ -53,7 +62,24 @@ pub(super) fn tangent_joints(
     }
     at.into_iter()
         .filter_map(|(p, f)| match f[..] {
-            [(f1, a1), (f2, a2)] if (a1 + a2).norm() <= TANGENT_TOL => Some((p, [f1, f2])),
+            [(f1, a1), (f2, a2)] if (a1 + a2).norm() <= TANGENT_TOL => {
+                let here = points[p as usize];
+                // The normal from an arc's centre (exact where the joint is axis-aligned
+                // at exact coordinates), else the segment's perpendicular.
+                let normal = [f1, f2]
+                    .iter()
+                    .find_map(|&f| match f {
+                        Gen::Arc(k) => Some(here - arcs[k as usize].c),
+                        _ => None,
+                    })
+                    .unwrap_or(a1.perp());
+                let joint = Joint {
+                    features: [f1, f2],
+                    at: here,
+                    normal: normal * (1.0 / normal.norm()),
+                };
+                Some((p, joint))
+            }
             _ => None,
         })
         .collect()
@@ -66,7 +92,7 @@ pub(super) fn tangent_joints(
 /// without a vertex at `P` on either side, or with a tip edge longer than `tip_tol`,
 /// is left as it is.
 pub(super) fn collapse(
-    joints: &HashMap<u32, [Gen; 2]>,
+    joints: &HashMap<u32, Joint>,
     tip_tol: f64,
     vertices: &mut [RawVertex],
     edges: &mut Vec<RawEdge>,
@@ -81,7 +107,7 @@ pub(super) fn collapse(
             [o, Gen::Point(p)] if joints.contains_key(&p) => (p, o),
             _ => return None,
         };
-        Some((p, joints[&p].iter().position(|&f| f == other)))
+        Some((p, joints[&p].features.iter().position(|&f| f == other)))
     };
     // The side through P's vertex, per joint; none where a tip edge is longer than
     // `tip_tol` (it is zero up to rounding): then the face is no sliver and stays.
@@ -111,7 +137,7 @@ pub(super) fn collapse(
         };
         match side {
             Some(s) if s == kept => {
-                let features = joints[&p];
+                let features = joints[&p].features;
                 e.gens = features;
                 for v in e.ends {
                     for f in features {
@@ -129,5 +155,34 @@ pub(super) fn collapse(
             }
         }
     });
+    onto_normals(joints, vertices, edges);
     merges
+}
+
+/// Puts every edge between a joint's two features that leaves the joint's own vertex
+/// (clearance 0 at the joint), with its end vertices, on the joint's normal, where it
+/// lies: the engine's points are on that line only up to rounding.
+fn onto_normals(joints: &HashMap<u32, Joint>, vertices: &mut [RawVertex], edges: &mut [RawEdge]) {
+    let by_pair: HashMap<[Gen; 2], &Joint> = joints
+        .values()
+        .flat_map(|j| {
+            let [a, b] = j.features;
+            [([a, b], j), ([b, a], j)]
+        })
+        .collect();
+    for e in edges {
+        let Some(joint) = by_pair.get(&e.gens) else {
+            continue;
+        };
+        let at_joint = |v: usize| vertices[v].t == 0.0 && vertices[v].at == joint.at;
+        if e.ends.iter().any(|&v| at_joint(v)) {
+            let onto = |q: Point| joint.at + joint.normal * (q - joint.at).dot(joint.normal);
+            e.points.iter_mut().for_each(|q| *q = onto(*q));
+            // The far end too: a vertex of the two features (and a third generator)
+            // on the normal, which the polyline's ends are taken from.
+            for v in e.ends {
+                vertices[v].at = onto(vertices[v].at);
+            }
+        }
+    }
 }

@@ -183,3 +183,20 @@ fn bisectors_are_only_given_when_asked() {
     let back = gvd::io::json::read_diagram(&json).unwrap();
     assert_eq!(back.edges[0].bisector, d.edges[0].bisector);
 }
+
+/// The picture draws edges with exact bisectors from them, coloured by clearance,
+/// with a legend; without bisectors it draws the polylines and no legend.
+#[test]
+fn pictures_colour_exact_edges_by_clearance() {
+    let s = scene("examples/scenes/slot-pocket.json");
+    let opts = gvd::io::svg::SvgOptions::default();
+    let plain =
+        gvd::io::svg::render_svg(&s, &gvd::compute(&s, &Options::default()).unwrap(), &opts);
+    assert!(!plain.contains("clearance-legend") && !plain.contains("<line "));
+    let exact = gvd::io::svg::render_svg(&s, &with_bisectors(&s), &opts);
+    assert!(exact.contains("clearance-legend") && exact.contains("clearance 0 … "));
+    assert!(
+        exact.matches("<line ").count() >= 8 * 30,
+        "too few clearance strokes"
+    );
+}

@@ -162,7 +162,10 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
     write_domain(&mut s, scene, &f, size);
     // Sites under the edges: a polygon's fill would hide its medial axis.
     write_sites(&mut s, scene, &f, size);
-    write_edges(&mut s, diagram, &f, "#2b6cb0", &sw(0.0025));
+    let t_max = write_edges(&mut s, diagram, &f, "#2b6cb0", &sw(0.0025));
+    if t_max > 0.0 {
+        write_clearance_legend(&mut s, scene.domain, &f, t_max);
+    }
     let _ = writeln!(s, "<g id=\"vertices\" fill=\"#d32f2f\">");
     for v in &diagram.vertices {
         let _ = writeln!(
@@ -288,16 +291,111 @@ fn write_domain(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
 }
 
 /// The diagram's edges as polylines of the given colour and width.
-fn write_edges(s: &mut String, diagram: &VoronoiComplex, f: &Fmt, colour: &str, width: &str) {
+/// Returns the largest clearance of the edges' exact bisectors (0 without them), for
+/// the legend of their colours.
+fn write_edges(
+    s: &mut String,
+    diagram: &VoronoiComplex,
+    f: &Fmt,
+    colour: &str,
+    width: &str,
+) -> f64 {
     let _ = writeln!(
         s,
         "<g id=\"edges\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"{width}\" stroke-linejoin=\"round\" stroke-linecap=\"round\">"
     );
+    // Edges with exact bisectors are drawn from them, coloured by clearance.
+    let t_max = diagram
+        .edges
+        .iter()
+        .flat_map(|e| e.bisector.iter().flat_map(|p| p.t))
+        .filter(|t| t.is_finite())
+        .fold(0.0f64, f64::max);
     for e in &diagram.edges {
-        let pts: Vec<String> = e.points.iter().map(|&p| f.pt(p)).collect();
-        let _ = writeln!(s, "<polyline points=\"{}\"/>", pts.join(" "));
+        if e.bisector.is_empty() || t_max <= 0.0 {
+            let pts: Vec<String> = e.points.iter().map(|&p| f.pt(p)).collect();
+            let _ = writeln!(s, "<polyline points=\"{}\"/>", pts.join(" "));
+            continue;
+        }
+        const STEPS: usize = 8;
+        for piece in &e.bisector {
+            let t = |k: usize| piece.t[0] + (piece.t[1] - piece.t[0]) * k as f64 / STEPS as f64;
+            for k in 0..STEPS {
+                let (a, b) = (piece.at(t(k)), piece.at(t(k + 1)));
+                let _ = writeln!(
+                    s,
+                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\"/>",
+                    f.num(a.x),
+                    f.num(-a.y),
+                    f.num(b.x),
+                    f.num(-b.y),
+                    viridis(0.5 * (t(k) + t(k + 1)) / t_max)
+                );
+            }
+        }
     }
     s.push_str("</g>\n");
+    t_max
+}
+
+/// The colour of `x ∈ [0, 1]` on the viridis scale (five stops, linear between).
+fn viridis(x: f64) -> String {
+    const STOPS: [[f64; 3]; 5] = [
+        [68.0, 1.0, 84.0],
+        [59.0, 82.0, 139.0],
+        [33.0, 145.0, 140.0],
+        [94.0, 201.0, 98.0],
+        [253.0, 231.0, 37.0],
+    ];
+    let x = if x.is_finite() {
+        x.clamp(0.0, 1.0)
+    } else {
+        0.0
+    } * 4.0;
+    let k = (x.floor() as usize).min(3);
+    let w = x - k as f64;
+    let c = |i: usize| (STOPS[k][i] * (1.0 - w) + STOPS[k + 1][i] * w).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", c(0), c(1), c(2))
+}
+
+/// A bar of the clearance colours along the domain's bottom edge, labelled 0 and
+/// `t_max`.
+fn write_clearance_legend(s: &mut String, domain: Aabb, f: &Fmt, t_max: f64) {
+    let (lo, hi) = (domain.min, domain.max);
+    let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+    let size = w.max(h);
+    let (x0, y0, bar_w, bar_h) = (lo.x + 0.02 * w, lo.y + 0.02 * h, 0.3 * w, 0.015 * size);
+    let _ = writeln!(s, "<g id=\"clearance-legend\" stroke=\"none\">");
+    s.push_str("<linearGradient id=\"clearance-scale\">");
+    for k in 0..=4 {
+        let x = k as f64 / 4.0;
+        let _ = write!(s, "<stop offset=\"{x}\" stop-color=\"{}\"/>", viridis(x));
+    }
+    s.push_str("</linearGradient>\n");
+    let _ = writeln!(
+        s,
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#clearance-scale)\"/>",
+        f.num(x0),
+        f.num(-(y0 + bar_h)),
+        f.num(bar_w),
+        f.num(bar_h)
+    );
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"{}\" font-size=\"{}\" font-family=\"sans-serif\" fill=\"#000000\">clearance 0 … {}</text>",
+        f.num(x0 + bar_w * 1.03),
+        f.num(-(y0 + 0.1 * bar_h)),
+        f.num(1.2 * bar_h),
+        fmt_len(t_max)
+    );
+    s.push_str("</g>\n");
+}
+
+/// A length with 3 significant digits.
+fn fmt_len(x: f64) -> String {
+    format!("{x:.3e}")
+        .parse::<f64>()
+        .map_or_else(|_| x.to_string(), |v| v.to_string())
 }
 
 /// The sites: points as dots, circles and ellipses as outlines, curves as strokes;

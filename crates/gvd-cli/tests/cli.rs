@@ -40,21 +40,14 @@ fn compute_ok(scene: &str, args: &[&std::ffi::OsStr]) {
 fn compute_writes_a_diagram_that_verifies() {
     let scene = repo("examples/scenes/points-mixed-0030.json");
     let (json, svg) = (scratch("mixed.json"), scratch("mixed.svg"));
-    let out = gvd()
-        .args([
-            "compute",
-            scene.to_str().unwrap(),
-            "--json",
-            json.to_str().unwrap(),
-            "--svg",
-            svg.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    compute_ok(
+        "points-mixed-0030.json",
+        &[
+            "--json".as_ref(),
+            json.as_ref(),
+            "--svg".as_ref(),
+            svg.as_ref(),
+        ],
     );
     let d: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();

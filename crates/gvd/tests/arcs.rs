@@ -42,9 +42,12 @@
 //! `ARCS_DUMP_DIR=dir cargo test --test arcs dump_scenes -- --ignored` writes every
 //! fixed scene (and a few of each random family) as JSON, for the shared checker.
 
+mod common;
+
+use common::{features, generators};
 use gvd::complex::{FeatureKind, Generator, VoronoiComplex};
 use gvd::geom::Point;
-use gvd::scene::{Mode, SiteKind};
+use gvd::scene::SiteKind;
 use gvd::{compute, Engine, Error, Options, Scene};
 use proptest::prelude::*;
 use serde_json::{json, Value};
@@ -115,23 +118,6 @@ fn arc_of(kind: &SiteKind) -> Option<ArcG> {
             end_angle,
         } => Some(ArcG::of(center, radius, start_angle, end_angle)),
         _ => None,
-    }
-}
-
-/// Corners and edges (as corner index pairs) of a linear site.
-fn features(kind: &SiteKind) -> (Vec<Point>, Vec<(usize, usize)>) {
-    match kind {
-        SiteKind::Point { at, .. } => (vec![*at], vec![]),
-        SiteKind::Segment { from, to } => (vec![*from, *to], vec![(0, 1)]),
-        SiteKind::Polyline { points } => (
-            points.clone(),
-            (1..points.len()).map(|k| (k - 1, k)).collect(),
-        ),
-        SiteKind::Arc { .. } => {
-            let a = arc_of(kind).unwrap();
-            (vec![a.end(0), a.end(1)], vec![])
-        }
-        _ => panic!("not a site of this test"),
     }
 }
 
@@ -214,40 +200,6 @@ fn dist_grad(s: &Scene, g: &Generator, q: Point) -> (f64, Point) {
 
 fn dist(s: &Scene, g: &Generator, q: Point) -> f64 {
     dist_grad(s, g, q).0
-}
-
-fn generators(s: &Scene) -> Vec<Generator> {
-    let mut out = Vec::new();
-    for (i, site) in s.sites.iter().enumerate() {
-        match (&site.kind, s.mode) {
-            (SiteKind::Point { .. }, _) | (_, Mode::Voronoi) => out.push(Generator::Site(i)),
-            (kind, _) => {
-                let (pts, edges) = features(kind);
-                for k in 0..pts.len() {
-                    out.push(Generator::Feature {
-                        site: i,
-                        feature: FeatureKind::Corner,
-                        index: k,
-                    });
-                }
-                for k in 0..edges.len() {
-                    out.push(Generator::Feature {
-                        site: i,
-                        feature: FeatureKind::Edge,
-                        index: k,
-                    });
-                }
-                if arc_of(kind).is_some() {
-                    out.push(Generator::Feature {
-                        site: i,
-                        feature: FeatureKind::Piece,
-                        index: 0,
-                    });
-                }
-            }
-        }
-    }
-    out
 }
 
 /// The worst brute-force error, in units of epsilon, with where it is.

@@ -58,7 +58,7 @@ pub fn supports_site(kind: &SiteKind) -> bool {
 
 /// The counter-clockwise span from `start` to `end` in `(0, 2π)`, or `None` for a full
 /// circle (the shared checker's rule: a span within 1e-12 of zero or 2π is a circle).
-fn arc_span(start: f64, end: f64) -> Option<f64> {
+pub(crate) fn arc_span(start: f64, end: f64) -> Option<f64> {
     let span = (end - start).rem_euclid(std::f64::consts::TAU);
     (span > 1e-12 && span < std::f64::consts::TAU - 1e-12).then_some(span)
 }

@@ -140,14 +140,14 @@ impl Features {
                     start_angle,
                     end_angle,
                 } => {
-                    let span = (end_angle - start_angle).rem_euclid(TAU);
-                    if !(span > 1e-12 && span < TAU - 1e-12) {
+                    let Some(span) = crate::incremental::linear::arc_span(start_angle, end_angle)
+                    else {
                         return Err(Error::Unsupported {
                             site: i,
                             kind: "arc".into(),
                             message: "offsets are computed for arcs short of a full circle".into(),
                         });
-                    }
+                    };
                     f.push_arc(center, radius, start_angle, span);
                 }
                 other => {

@@ -143,16 +143,7 @@ impl Field {
 
     /// The distance field of a union of segments.
     pub(super) fn chain(segs: Vec<(Point, Point)>) -> Field {
-        let (mut lo, mut hi) = (
-            Point::new(f64::INFINITY, f64::INFINITY),
-            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
-        );
-        for &(a, b) in &segs {
-            for p in [a, b] {
-                lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-                hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-            }
-        }
+        let (lo, hi) = bounds(&segs);
         Field::Chain { segs, lo, hi }
     }
 
@@ -555,6 +546,21 @@ fn real_roots(c: &[f64], lo: f64, hi: f64) -> Vec<f64> {
         roots.push(hi);
     }
     roots
+}
+
+/// The corners `(lo, hi)` of the box around segments' ends (infinite when empty).
+pub(super) fn bounds(segs: &[(Point, Point)]) -> (Point, Point) {
+    let (mut lo, mut hi) = (
+        Point::new(f64::INFINITY, f64::INFINITY),
+        Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+    );
+    for &(a, b) in segs {
+        for p in [a, b] {
+            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+        }
+    }
+    (lo, hi)
 }
 
 #[cfg(test)]

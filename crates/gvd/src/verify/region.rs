@@ -23,16 +23,7 @@ pub(super) struct Region {
 
 impl Region {
     pub(super) fn new(segs: Vec<(Point, Point)>) -> Self {
-        let (mut lo, mut hi) = (
-            Point::new(f64::INFINITY, f64::INFINITY),
-            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
-        );
-        for &(a, b) in &segs {
-            for p in [a, b] {
-                lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-                hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-            }
-        }
+        let (lo, hi) = super::field::bounds(&segs);
         Region { segs, lo, hi }
     }
 

@@ -16,7 +16,7 @@ pub fn seg_dist(q: Point, a: Point, b: Point) -> f64 {
 }
 
 /// Corners and edges of a site with features, as (corner points, edges as corner
-/// index pairs).
+/// index pairs); an arc has its two ends as corners and no edges.
 pub fn features(kind: &SiteKind) -> (Vec<Point>, Vec<(usize, usize)>) {
     match kind {
         SiteKind::Point { at, .. } => (vec![*at], vec![]),
@@ -36,7 +36,16 @@ pub fn features(kind: &SiteKind) -> (Vec<Point>, Vec<(usize, usize)>) {
             }
             (pts, edges)
         }
-        _ => panic!("not a linear site"),
+        &SiteKind::Arc {
+            center,
+            radius,
+            start_angle,
+            end_angle,
+        } => (
+            arc_ends(center, radius, start_angle, end_angle).to_vec(),
+            vec![],
+        ),
+        _ => panic!("not a linear site or an arc"),
     }
 }
 
@@ -53,9 +62,12 @@ pub fn inside_polygon(q: Point, rings: &[Vec<Point>]) -> bool {
     inside
 }
 
-/// The ends of the arc of centre `c` and radius `r` from angle `start` to `end`.
+/// The ends of the arc of centre `c` and radius `r` from angle `start` to `end`,
+/// computed as the scene's reader does (the end at `start` plus the counter-clockwise
+/// span), so that another site can name the same point bit for bit.
 pub fn arc_ends(c: Point, r: f64, start: f64, end: f64) -> [Point; 2] {
-    [start, end].map(|a| c + Point::new(a.cos(), a.sin()) * r)
+    let span = (end - start).rem_euclid(std::f64::consts::TAU);
+    [start, start + span].map(|a| c + Point::new(a.cos(), a.sin()) * r)
 }
 
 /// The distance from `q` to that arc, counter-clockwise from `start` to `end`: to its
@@ -140,6 +152,13 @@ pub fn generators(s: &Scene) -> Vec<Generator> {
                         site: i,
                         feature: FeatureKind::Edge,
                         index: k,
+                    });
+                }
+                if let SiteKind::Arc { .. } = kind {
+                    out.push(Generator::Feature {
+                        site: i,
+                        feature: FeatureKind::Piece,
+                        index: 0,
                     });
                 }
             }

@@ -29,6 +29,7 @@ pub(crate) use geometry::Gen;
 
 use super::PointDiagram;
 use crate::geom::{Aabb, Point};
+use crate::par::{filter_map_range, map_range};
 use crate::Error;
 use geometry::{Arc, Line};
 use graph::{Graph, GHOST};
@@ -182,32 +183,16 @@ impl SegmentDiagram {
         for (k, &v) in live.iter().enumerate() {
             index[v] = k;
         }
-        let vertex = |&v: &usize| self.raw_vertex(v);
-        #[cfg(feature = "parallel")]
-        let vertices = {
-            use rayon::prelude::*;
-            live.par_iter().with_min_len(1 << 12).map(vertex).collect()
-        };
-        #[cfg(not(feature = "parallel"))]
-        let vertices = live.iter().map(vertex).collect();
+        let vertices = map_range(live.len(), 1 << 12, |k| self.raw_vertex(live[k]));
         let sites = Sites {
             points: &self.points,
             lines: &self.lines,
             arcs: &self.arcs,
             faces_at_point: &[],
         };
-        let edge = |h: usize| self.raw_edge(&sites, &index, h, tol);
-        #[cfg(feature = "parallel")]
-        let edges = {
-            use rayon::prelude::*;
-            (0..g.edges.len())
-                .into_par_iter()
-                .with_min_len(1 << 12)
-                .filter_map(edge)
-                .collect()
-        };
-        #[cfg(not(feature = "parallel"))]
-        let edges = (0..g.edges.len()).filter_map(edge).collect();
+        let edges = filter_map_range(g.edges.len(), 1 << 12, |h| {
+            self.raw_edge(&sites, &index, h, tol)
+        });
         (vertices, edges)
     }
 

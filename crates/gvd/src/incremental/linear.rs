@@ -20,6 +20,7 @@
 
 use super::joints;
 use super::offset_form::{self, OffsetGen};
+use super::phases::Phases;
 use super::rescale;
 use super::segments::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
@@ -485,6 +486,7 @@ pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, 
         rescale::unscale(&mut c, s);
         return Ok(c);
     }
+    let mut phases = Phases::default();
     let g = Generators::of(scene);
     if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely) {
         return Err(conflict_error(&g, c));
@@ -493,15 +495,20 @@ pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, 
     if let Some(c) = find_arc_conflict(&g.points, &g.segments, &g.arcs, &g.lonely, scale) {
         return Err(arc_conflict_error(&g, c));
     }
+    phases.end("input");
     let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain)?;
+    phases.end("construction");
     let (vertices, edges) = diagram.raw(scene.epsilon / 4.0);
     let overrides = diagram.overrides;
     // The graph is no longer needed: free it before the output is assembled.
     drop(diagram);
+    phases.end("bisectors");
     let mut complex = assemble(&g, scene, vertices, edges, bisectors);
+    phases.end("assembly");
     complex
         .stats
         .insert("topology_overrides".into(), serde_json::json!(overrides));
+    phases.record(&mut complex.stats);
     Ok(complex)
 }
 

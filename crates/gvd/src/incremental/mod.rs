@@ -32,6 +32,7 @@ pub mod linear;
 mod offset_form;
 mod order;
 mod output;
+mod phases;
 mod predicates;
 pub(crate) mod rescale;
 mod segments;

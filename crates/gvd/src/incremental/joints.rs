@@ -34,6 +34,13 @@ pub(super) struct Joint {
     normal: Point,
 }
 
+impl Joint {
+    /// The foot of `q` on the joint's normal.
+    pub(super) fn onto(&self, q: Point) -> Point {
+        self.at + self.normal * (q - self.at).dot(self.normal)
+    }
+}
+
 /// The tangent joints: each point generator that ends exactly two features whose
 /// unit directions away from it `a₁`, `a₂` satisfy `|a₁ + a₂| ≤ TANGENT_TOL`, with
 /// those two features.
@@ -89,13 +96,14 @@ pub(super) fn tangent_joints(
 /// diagram: the separators `P/F` on the side of `P`'s vertex become edges `F₁/F₂`
 /// and their vertices list both features, the other side's separators and the tip
 /// edges `P/X` are removed. Returns the tips' vertex pairs, to be merged. A joint
-/// without a vertex at `P` on either side, or with a tip edge longer than `tip_tol`,
-/// is left as it is.
+/// without a vertex at `P` on either side, or with a tip edge longer than `tip_tol`
+/// (by `length`), is left as it is.
 pub(super) fn collapse(
     joints: &HashMap<u32, Joint>,
     tip_tol: f64,
     vertices: &mut [RawVertex],
     edges: &mut Vec<RawEdge>,
+    length: impl Fn(&RawEdge) -> f64,
 ) -> Vec<[usize; 2]> {
     if joints.is_empty() {
         return Vec::new();
@@ -121,8 +129,7 @@ pub(super) fn collapse(
     }
     for e in edges.iter() {
         if let Some((p, None)) = role(e) {
-            let len: f64 = e.points.windows(2).map(|w| w[0].dist(w[1])).sum();
-            if len > tip_tol {
+            if length(e) > tip_tol {
                 keep.remove(&p);
             }
         }
@@ -161,27 +168,27 @@ pub(super) fn collapse(
 
 /// Puts every edge between a joint's two features that leaves the joint's own vertex
 /// (clearance 0 at the joint), with its end vertices, on the joint's normal, where it
-/// lies: the engine's points are on that line only up to rounding.
+/// lies: the engine's points are on that line only up to rounding. The edge's polyline
+/// is projected onto the normal when it is drawn ([`RawEdge::on_normal`]).
 fn onto_normals(joints: &HashMap<u32, Joint>, vertices: &mut [RawVertex], edges: &mut [RawEdge]) {
-    let by_pair: HashMap<[Gen; 2], &Joint> = joints
-        .values()
-        .flat_map(|j| {
+    let by_pair: HashMap<[Gen; 2], (u32, &Joint)> = joints
+        .iter()
+        .flat_map(|(&p, j)| {
             let [a, b] = j.features;
-            [([a, b], j), ([b, a], j)]
+            [([a, b], (p, j)), ([b, a], (p, j))]
         })
         .collect();
     for e in edges {
-        let Some(joint) = by_pair.get(&e.gens) else {
+        let Some(&(p, joint)) = by_pair.get(&e.gens) else {
             continue;
         };
         let at_joint = |v: usize| vertices[v].t == 0.0 && vertices[v].at == joint.at;
         if e.ends.iter().any(|&v| at_joint(v)) {
-            let onto = |q: Point| joint.at + joint.normal * (q - joint.at).dot(joint.normal);
-            e.points.iter_mut().for_each(|q| *q = onto(*q));
+            e.on_normal = Some(p);
             // The far end too: a vertex of the two features (and a third generator)
             // on the normal, which the polyline's ends are taken from.
             for v in e.ends {
-                vertices[v].at = onto(vertices[v].at);
+                vertices[v].at = joint.onto(vertices[v].at);
             }
         }
     }

@@ -23,10 +23,11 @@ use super::offset_form::{self, OffsetGen};
 use super::phases::Phases;
 use super::rescale;
 use super::segments::{
-    find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
+    find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, RawEdge, SegmentDiagram,
 };
 use crate::complex::{BisectorPiece, Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
+use crate::par::{filter_map_range, map_range};
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
 use std::collections::HashMap;
@@ -336,6 +337,14 @@ impl Generators {
         ea.into_iter().find(|p| eb.contains(p))
     }
 
+    /// Whether an edge between generators `a` and `b` is drawn in `mode`: they have
+    /// different labels (of different sites in `voronoi` mode), and it is not a zone
+    /// boundary between a segment or an arc and one of its ends.
+    fn shown(&self, a: Gen, b: Gen, mode: Mode) -> bool {
+        let (la, lb) = (self.label(a, mode), self.label(b, mode));
+        la != lb && !(mode == Mode::Voronoi && la.site() == lb.site()) && !self.is_separator(a, b)
+    }
+
     /// Whether `a` and `b` are a segment and one of its own ends.
     fn is_separator(&self, a: Gen, b: Gen) -> bool {
         match (a, b) {
@@ -498,29 +507,27 @@ pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, 
     phases.end("input");
     let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain)?;
     phases.end("construction");
-    let (vertices, edges) = diagram.raw(scene.epsilon / 4.0);
-    let overrides = diagram.overrides;
-    // The graph is no longer needed: free it before the output is assembled.
-    drop(diagram);
-    phases.end("bisectors");
-    let mut complex = assemble(&g, scene, vertices, edges, bisectors);
+    let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases);
     phases.end("assembly");
-    complex
-        .stats
-        .insert("topology_overrides".into(), serde_json::json!(overrides));
+    complex.stats.insert(
+        "topology_overrides".into(),
+        serde_json::json!(diagram.overrides),
+    );
     phases.record(&mut complex.stats);
     Ok(complex)
 }
 
-/// An output edge before clipping: points, end vertices (`None` for a loop), labels,
-/// and its stretches (see [`Stretch`]).
-type Chain = (
-    Vec<Point>,
-    Option<usize>,
-    Option<usize>,
-    [Generator; 2],
-    Vec<Stretch>,
-);
+/// An output edge before it is drawn: its kept edges in order (a range of the
+/// walk's links) and its end vertices (`None` for a closed loop). Its labels are its
+/// first edge's.
+struct Chain {
+    links: std::ops::Range<usize>,
+    from: Option<usize>,
+    to: Option<usize>,
+}
+
+/// A step of a chain: a kept edge, and whether it is walked from its `ends[0]`.
+type Link = (usize, bool);
 
 /// The part of a chain that one raw edge contributed: from the chain's segment `start`
 /// (between points `start` and `start + 1`) to the next stretch's, on the bisector of
@@ -542,15 +549,17 @@ fn find(parent: &mut [usize], mut v: usize) -> usize {
 
 /// A raw edge kept for the output, its ends merged across zero-length edges.
 struct Kept {
-    sites: [Generator; 2],
     gens: [Gen; 2],
-    ends: [usize; 2],
-    points: Vec<Point>,
+    ends: [u32; 2],
+    /// The graph's half-edge from `ends[0]` to `ends[1]`.
+    half: u32,
+    /// See [`RawEdge::on_normal`].
+    on_normal: Option<u32>,
 }
 
-/// The labels of each vertex of the union–find's merged vertices (their roots; none
-/// for the others), in the order of the raw vertices and their generators, each once:
-/// first the generators' names, then the other owners of shared points.
+/// The labels of the vertices merged across zero-length edges (at their roots in `root`;
+/// none for the others), in the order of the raw vertices and their generators, each
+/// once: first the generators' names, then the other owners of shared points.
 struct Labels {
     /// Root `r`'s labels are `items[start[r]..start[r] + len[r]]`.
     start: Vec<usize>,
@@ -561,18 +570,13 @@ struct Labels {
 }
 
 impl Labels {
-    fn of(
-        g: &Generators,
-        mode: Mode,
-        raw: &[super::segments::RawVertex],
-        parent: &mut [usize],
-    ) -> Labels {
+    fn of(g: &Generators, mode: Mode, raw: &[super::segments::RawVertex], root: &[u32]) -> Labels {
         let nv = raw.len();
-        let root: Vec<usize> = (0..nv).map(|v| find(parent, v)).collect();
+        let root = |v: usize| root[v] as usize;
         // Room for every generator of the vertices merged into each root.
         let mut start = vec![0usize; nv + 1];
         for (v, rv) in raw.iter().enumerate() {
-            start[root[v] + 1] += rv.gens.iter().map(|&x| g.label_count(x)).sum::<usize>();
+            start[root(v) + 1] += rv.gens.iter().map(|&x| g.label_count(x)).sum::<usize>();
         }
         for v in 0..nv {
             start[v + 1] += start[v];
@@ -591,7 +595,7 @@ impl Labels {
         };
         for (v, rv) in raw.iter().enumerate() {
             for &gen in &rv.gens {
-                add(&mut labels, root[v], g.label(gen, mode));
+                add(&mut labels, root(v), g.label(gen, mode));
             }
         }
         labels.named.copy_from_slice(&labels.len);
@@ -599,7 +603,7 @@ impl Labels {
             for &gen in &rv.gens {
                 if let Gen::Point(p) = gen {
                     for l in g.also_labels(p, mode) {
-                        add(&mut labels, root[v], l);
+                        add(&mut labels, root(v), l);
                     }
                 }
             }
@@ -616,165 +620,185 @@ impl Labels {
 /// vertex to itself twice), as one flat list.
 struct Incident {
     /// Vertex `v`'s edges are `edges[start[v]..start[v + 1]]`.
-    start: Vec<usize>,
-    edges: Vec<usize>,
+    start: Vec<u32>,
+    edges: Vec<u32>,
 }
 
 impl Incident {
     fn of(kept: &[Kept], nv: usize) -> Incident {
-        let mut start = vec![0usize; nv + 1];
+        let mut start = vec![0u32; nv + 1];
         for e in kept {
-            start[e.ends[0] + 1] += 1;
-            start[e.ends[1] + 1] += 1;
+            start[e.ends[0] as usize + 1] += 1;
+            start[e.ends[1] as usize + 1] += 1;
         }
         for v in 0..nv {
             start[v + 1] += start[v];
         }
         let mut fill = start.clone();
-        let mut edges = vec![0usize; start[nv]];
+        let mut edges = vec![0u32; start[nv] as usize];
         for (k, e) in kept.iter().enumerate() {
-            for v in e.ends {
-                edges[fill[v]] = k;
+            for v in e.ends.map(|v| v as usize) {
+                edges[fill[v] as usize] = k as u32;
                 fill[v] += 1;
             }
         }
         Incident { start, edges }
     }
 
-    fn around(&self, v: usize) -> &[usize] {
-        &self.edges[self.start[v]..self.start[v + 1]]
+    fn around(&self, v: usize) -> &[u32] {
+        &self.edges[self.start[v] as usize..self.start[v + 1] as usize]
     }
 }
 
 /// Chains the kept edges through the vertices that join two labels and two kept
 /// edges, away from the sites: one chain from every node (a vertex of three or more
-/// named labels, not two kept edges, or `on_site`, as a tangent joint on its normal) along
-/// each of its unused edges, then the closed loops left. Each edge's points move into
-/// its chain.
+/// named labels, not two kept edges, or `on_site`, as a tangent joint on its normal)
+/// along each of its unused edges, then the closed loops left. Returns the chains and
+/// the links they range over.
 fn chain_edges(
-    mut kept: Vec<Kept>,
+    kept: &[Kept],
     labels: &Labels,
-    on_site: impl Fn(usize) -> bool,
-) -> Vec<Chain> {
+    on_site: impl Fn(usize) -> bool + Sync,
+) -> (Vec<Chain>, Vec<Link>) {
     let nv = labels.len.len();
-    let incident = Incident::of(&kept, nv);
-    let is_node = |v: usize| labels.named[v] >= 3 || incident.around(v).len() != 2 || on_site(v);
+    let incident = Incident::of(kept, nv);
+    let node = map_range(nv, 1 << 12, |v| {
+        labels.named[v] >= 3 || incident.around(v).len() != 2 || on_site(v)
+    });
     let mut used = vec![false; kept.len()];
     let mut chains: Vec<Chain> = Vec::new();
-    // The chain from vertex `from` along `start_edge`, its last vertex, and whether it
-    // closed a loop.
-    let walk = |start_edge: usize, from: usize, kept: &mut [Kept], used: &mut [bool]| {
-        let mut points: Vec<Point> = Vec::new();
-        let mut stretches: Vec<Stretch> = Vec::new();
+    let mut links: Vec<Link> = Vec::with_capacity(kept.len());
+    // Walks from vertex `from` along `start_edge` to a node or back to the start of a
+    // closed loop, recording the links; returns the last vertex.
+    let walk = |start_edge: usize, from: usize, used: &mut [bool], links: &mut Vec<Link>| {
         let (mut e, mut v) = (start_edge, from);
         loop {
             used[e] = true;
-            let ed = &mut kept[e];
-            let forward = ed.ends[0] == v;
-            let mut pts = std::mem::take(&mut ed.points);
-            if !forward {
-                pts.reverse();
+            let forward = kept[e].ends[0] as usize == v;
+            links.push((e, forward));
+            v = kept[e].ends[usize::from(forward)] as usize;
+            if node[v] {
+                return v;
             }
-            stretches.push(Stretch {
-                start: points.len().saturating_sub(1),
-                gens: ed.gens,
-            });
-            if points.is_empty() {
-                points = pts;
-            } else {
-                points.extend_from_slice(&pts[1..]);
-            }
-            v = if forward { ed.ends[1] } else { ed.ends[0] };
-            if is_node(v) {
-                return (points, stretches, v, false);
-            }
-            match incident.around(v).iter().find(|&&k| !used[k]) {
-                Some(&k) => e = k,
-                None => return (points, stretches, v, true), // closed loop
+            match incident.around(v).iter().find(|&&k| !used[k as usize]) {
+                Some(&k) => e = k as usize,
+                None => return v, // closed loop
             }
         }
     };
-    for v in 0..nv {
-        if !is_node(v) {
-            continue;
-        }
+    for v in (0..nv).filter(|&v| node[v]) {
         for &k in incident.around(v) {
+            let k = k as usize;
             if used[k] {
                 continue;
             }
-            let (points, stretches, end, _) = walk(k, v, &mut kept, &mut used);
-            chains.push((points, Some(v), Some(end), kept[k].sites, stretches));
+            let start = links.len();
+            let end = walk(k, v, &mut used, &mut links);
+            chains.push(Chain {
+                links: start..links.len(),
+                from: Some(v),
+                to: Some(end),
+            });
         }
     }
     for k in 0..kept.len() {
         if !used[k] {
-            let start = kept[k].ends[0];
-            let (mut points, stretches, _, _) = walk(k, start, &mut kept, &mut used);
-            if points.first() != points.last() {
-                if let Some(&p) = points.first() {
-                    points.push(p);
-                }
-            }
-            chains.push((points, None, None, kept[k].sites, stretches));
+            let start = links.len();
+            walk(k, kept[k].ends[0] as usize, &mut used, &mut links);
+            chains.push(Chain {
+                links: start..links.len(),
+                from: None,
+                to: None,
+            });
         }
     }
-    chains
+    (chains, links)
 }
 
+/// The complex of `diagram` (the diagram of `g`'s generators) in the scene's mode.
 fn assemble(
     g: &Generators,
     scene: &Scene,
-    mut raw_vertices: Vec<super::segments::RawVertex>,
-    mut raw_edges: Vec<super::segments::RawEdge>,
+    diagram: &SegmentDiagram,
     bisectors: bool,
+    phases: &mut Phases,
 ) -> VoronoiComplex {
     let mode = scene.mode;
-    let nv = raw_vertices.len();
+    let tol = scene.epsilon / 4.0;
     let joints = joints::tangent_joints(&g.points, &g.segments, &g.arcs);
+    let at_joint = |x: Gen| matches!(x, Gen::Point(p) if joints.contains_key(&p));
+    let (mut raw_vertices, mut raw_edges) = diagram.raw(tol, |a, b| {
+        g.shown(a, b, mode) || at_joint(a) || at_joint(b)
+    });
+    phases.end("raw");
+    let nv = raw_vertices.len();
     // Contracting a tip moves edge ends by its length: at most epsilon/8 (tips are
     // points up to rounding, which grows where the sliver's sides meet a bisector at
     // a shallow angle far out).
     let tip_tol = scene.epsilon / 8.0;
-    let tips = joints::collapse(&joints, tip_tol, &mut raw_vertices, &mut raw_edges);
+    let length = |e: &RawEdge| {
+        let mut points = Vec::new();
+        diagram.polyline(e.half, tol, &mut points);
+        points.windows(2).map(|w| w[0].dist(w[1])).sum()
+    };
+    let tips = joints::collapse(&joints, tip_tol, &mut raw_vertices, &mut raw_edges, length);
     // Vertices joined by zero-length edges are one vertex, and so are the vertices
     // of a tangent joint's tip.
     let mut parent: Vec<usize> = (0..nv).collect();
-    let zero = |e: &super::segments::RawEdge| e.points.windows(2).all(|w| w[0] == w[1]);
-    let zero_ends = raw_edges.iter().filter(|e| zero(e)).map(|e| e.ends);
+    let zero_ends = raw_edges.iter().filter(|e| e.zero).map(|e| e.ends);
     for [a, b] in zero_ends.chain(tips) {
         let (a, b) = (find(&mut parent, a), find(&mut parent, b));
         parent[a.max(b)] = a.min(b);
     }
-    let labels = Labels::of(g, mode, &raw_vertices, &mut parent);
-    // Kept edges: different labels, not a zone boundary, positive length.
-    let mut kept: Vec<Kept> = Vec::new();
-    for e in raw_edges {
-        let [la, lb] = e.gens.map(|x| g.label(x, mode));
-        if la == lb || zero(&e) || g.is_separator(e.gens[0], e.gens[1]) {
-            continue;
-        }
-        if mode == Mode::Voronoi && la.site() == lb.site() {
-            continue;
-        }
-        let ends = e.ends.map(|v| find(&mut parent, v));
-        // A merged vertex is at its root: the polyline ends there.
-        let mut points = e.points;
-        let last = points.len() - 1;
-        points[0] = raw_vertices[ends[0]].at;
-        points[last] = raw_vertices[ends[1]].at;
-        kept.push(Kept {
-            sites: [la, lb],
+    let root: Vec<u32> = (0..nv).map(|v| find(&mut parent, v) as u32).collect();
+    let labels = Labels::of(g, mode, &raw_vertices, &root);
+    // Kept edges: shown, of positive length; a merged vertex is at its root.
+    let kept: Vec<Kept> = filter_map_range(raw_edges.len(), 1 << 12, |k| {
+        let e = &raw_edges[k];
+        (!e.zero && g.shown(e.gens[0], e.gens[1], mode)).then(|| Kept {
             gens: e.gens,
-            ends,
-            points,
-        });
-    }
+            ends: e.ends.map(|v| root[v]),
+            half: e.half,
+            on_normal: e.on_normal,
+        })
+    });
+    drop(raw_edges);
     // Insides of polygons, clipping, output indices.
     let domain = scene.domain;
     // Where an edge ends on a site (a corner), the two distance fields are not
     // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
     let hair = 1e-9 * domain.longest_side();
-    let chains = chain_edges(kept, &labels, |v| raw_vertices[v].t <= hair);
+    let (chains, links) = chain_edges(&kept, &labels, |v| raw_vertices[v].t <= hair);
+    // A chain's polyline: its edges' polylines in order, each projected onto its line
+    // if it has one, from its ends' (merged) vertices, with the stretches they make.
+    let draw = |chain: &Chain| {
+        let (mut points, mut stretches, mut edge) = (Vec::new(), Vec::new(), Vec::new());
+        for &(k, forward) in &links[chain.links.clone()] {
+            let e = &kept[k];
+            edge.clear();
+            diagram.polyline(e.half, tol, &mut edge);
+            if let Some(p) = e.on_normal {
+                let joint = &joints[&p];
+                edge.iter_mut().for_each(|q| *q = joint.onto(*q));
+            }
+            let last = edge.len() - 1;
+            edge[0] = raw_vertices[e.ends[0] as usize].at;
+            edge[last] = raw_vertices[e.ends[1] as usize].at;
+            if !forward {
+                edge.reverse();
+            }
+            stretches.push(Stretch {
+                start: points.len().saturating_sub(1),
+                gens: e.gens,
+            });
+            let skip = usize::from(!points.is_empty());
+            points.extend_from_slice(&edge[skip..]);
+        }
+        if chain.from.is_none() && points.first() != points.last() {
+            points.push(points[0]);
+        }
+        (points, stretches)
+    };
     let mut out = VoronoiComplex::default();
     let mut out_index: Vec<Option<usize>> = vec![None; nv];
     let mut vertex_out = |v: usize, out: &mut VoronoiComplex| -> Option<usize> {
@@ -798,9 +822,13 @@ fn assemble(
             points[end] = p.lerp(q, (hair / len).min(0.5));
         }
     };
-    // Pulled, kept by the insides, clipped: chain by chain (in parallel), then numbered
-    // in order.
-    let clip = |(mut points, from, to, sites, stretches): Chain| {
+    // Drawn, pulled, kept by the insides, clipped: chain by chain (in parallel), then
+    // numbered in order.
+    let clip = |c: usize| {
+        let Chain { from, to, .. } = chains[c];
+        let first = &kept[links[chains[c].links.start].0];
+        let sites = first.gens.map(|x| g.label(x, mode));
+        let (mut points, stretches) = draw(&chains[c]);
         if from.is_some_and(|v| raw_vertices[v].t <= hair) {
             pull(&mut points, true);
         }
@@ -831,17 +859,7 @@ fn assemble(
             (pieces, from, to, sites)
         })
     };
-    #[cfg(feature = "parallel")]
-    let clipped: Vec<_> = {
-        use rayon::prelude::*;
-        chains
-            .into_par_iter()
-            .with_min_len(1 << 10)
-            .map(clip)
-            .collect()
-    };
-    #[cfg(not(feature = "parallel"))]
-    let clipped: Vec<_> = chains.into_iter().map(clip).collect();
+    let clipped = map_range(chains.len(), 1 << 10, clip);
     for (mut pieces, from, to, sites) in clipped.into_iter().flatten() {
         let closed_loop = from.is_none();
         // A closed loop cut by the domain whose first point is inside: its last piece

@@ -371,10 +371,11 @@ impl Bisector {
             .then(|| self.boundary(lo.0, hi.0, inside))
     }
 
-    /// A polyline from `from` to `to` within `tol` of the bisector.
-    pub(crate) fn polyline(&self, from: Point, to: Point, tol: f64) -> Vec<Point> {
+    /// Appends to `out` a polyline from `from` to `to` within `tol` of the bisector.
+    pub(crate) fn polyline(&self, from: Point, to: Point, tol: f64, out: &mut Vec<Point>) {
+        out.push(from);
         match self {
-            Bisector::Line { .. } | Bisector::Chord { .. } => vec![from, to],
+            Bisector::Line { .. } | Bisector::Chord { .. } => {}
             Bisector::Parabola { up, hp, .. } => {
                 let (u0, u1) = self.range(from, to);
                 // Chord sagitta over a step Δu is at most Δu²·κ/8 with curvature
@@ -383,35 +384,24 @@ impl Bisector {
                 // than `tol`.
                 let step = (8.0 * tol * hp.abs()).sqrt();
                 let apex = (up - u0) * (up - u1) < 0.0;
-                let stops = if apex {
-                    vec![u0, *up, u1]
-                } else {
-                    vec![u0, u1]
-                };
-                let mut pts = vec![from];
+                let stops: &[f64] = if apex { &[u0, *up, u1] } else { &[u0, u1] };
                 for w in stops.windows(2) {
                     let n = ((w[1] - w[0]).abs() / step).ceil().clamp(1.0, 1e5) as usize;
                     for k in 1..n {
-                        pts.push(
-                            self.point(from, to, w[0] + (w[1] - w[0]) * k as f64 / n as f64)
-                                .0,
-                        );
+                        let u = w[0] + (w[1] - w[0]) * k as f64 / n as f64;
+                        out.push(self.point(from, to, u).0);
                     }
                     if w[1] != u1 {
-                        pts.push(self.point(from, to, w[1]).0);
+                        out.push(self.point(from, to, w[1]).0);
                     }
                 }
-                pts.push(to);
-                pts
             }
             Bisector::Conic(conic) => {
                 let (s0, s1) = self.range(from, to);
-                let mut pts = vec![from];
-                pts.extend(conic.interior_samples(s0, s1, tol));
-                pts.push(to);
-                pts
+                out.extend(conic.interior_samples(s0, s1, tol));
             }
         }
+        out.push(to);
     }
 }
 

@@ -34,6 +34,7 @@ use crate::Error;
 use geometry::{Arc, Line};
 use graph::{Graph, GHOST};
 use insert::{insert_site, InsertError, Scratch, Sites};
+use smallvec::SmallVec;
 
 /// The diagram of points and non-crossing segments, as a general half-edge graph.
 pub(crate) struct SegmentDiagram {
@@ -49,11 +50,18 @@ pub(crate) struct SegmentDiagram {
     pub(crate) overrides: usize,
 }
 
-/// An edge of the raw diagram: two generators, the polyline between two vertices.
+/// An edge of the raw diagram: two generators and two vertices; its polyline is
+/// [`SegmentDiagram::polyline`] of `half`.
 pub(crate) struct RawEdge {
     pub(crate) gens: [Gen; 2],
     pub(crate) ends: [usize; 2],
-    pub(crate) points: Vec<Point>,
+    /// The graph's half-edge from `ends[0]` to `ends[1]`.
+    pub(crate) half: u32,
+    /// Whether the edge is a point: both ends and every point of its polyline coincide.
+    pub(crate) zero: bool,
+    /// The point generator of a tangent joint on whose normal the edge lies exactly
+    /// (set by the caller, see `joints.rs`): its polyline is projected onto it.
+    pub(crate) on_normal: Option<u32>,
 }
 
 /// A vertex of the raw diagram with the generators of the faces around it.
@@ -61,7 +69,7 @@ pub(crate) struct RawVertex {
     pub(crate) at: Point,
     /// Clearance: 0 for a vertex on a site (a segment endpoint).
     pub(crate) t: f64,
-    pub(crate) gens: Vec<Gen>,
+    pub(crate) gens: SmallVec<[Gen; 3]>,
 }
 
 impl SegmentDiagram {
@@ -171,10 +179,14 @@ impl SegmentDiagram {
         }
     }
 
-    /// Every finite vertex (with its real generators) and every edge between two real
-    /// generators, unclipped, in input coordinates, with polylines within `tol` of the
-    /// bisectors.
-    pub(crate) fn raw(&self, tol: f64) -> (Vec<RawVertex>, Vec<RawEdge>) {
+    /// Every finite vertex (with its real generators), and the edges between two real
+    /// generators that are `wanted` or of zero length (judged on their polylines within
+    /// `tol`), in input coordinates.
+    pub(crate) fn raw(
+        &self,
+        tol: f64,
+        wanted: impl Fn(Gen, Gen) -> bool + Sync,
+    ) -> (Vec<RawVertex>, Vec<RawEdge>) {
         let g = &self.graph;
         let live: Vec<usize> = (0..g.vertices.len())
             .filter(|&v| g.vertices[v].alive && v as u32 != GHOST)
@@ -184,14 +196,8 @@ impl SegmentDiagram {
             index[v] = k;
         }
         let vertices = map_range(live.len(), 1 << 12, |k| self.raw_vertex(live[k]));
-        let sites = Sites {
-            points: &self.points,
-            lines: &self.lines,
-            arcs: &self.arcs,
-            faces_at_point: &[],
-        };
         let edges = filter_map_range(g.edges.len(), 1 << 12, |h| {
-            self.raw_edge(&sites, &index, h, tol)
+            self.raw_edge(&index, h, tol, &wanted)
         });
         (vertices, edges)
     }
@@ -200,7 +206,7 @@ impl SegmentDiagram {
     fn raw_vertex(&self, v: usize) -> RawVertex {
         let g = &self.graph;
         let vx = &g.vertices[v];
-        let mut gens: Vec<Gen> = Vec::with_capacity(3);
+        let mut gens = SmallVec::new();
         for e in g.outgoing(v as u32) {
             let gen = self.caller_gen(g.faces[g.edges[e as usize].face as usize].gen);
             if let Some(c) = gen.filter(|c| !gens.contains(c)) {
@@ -215,10 +221,17 @@ impl SegmentDiagram {
         }
     }
 
-    /// The raw edge of half-edge `h` (`None` for the second half-edge of a pair, and
-    /// for edges at a far generator or the vertex at infinity); `index` maps live
-    /// vertices to their raw index (`usize::MAX` for the others).
-    fn raw_edge(&self, sites: &Sites, index: &[usize], h: usize, tol: f64) -> Option<RawEdge> {
+    /// The raw edge of half-edge `h` (`None` for the second half-edge of a pair, for
+    /// edges at a far generator or the vertex at infinity, and for unwanted edges of
+    /// positive length); `index` maps live vertices to their raw index (`usize::MAX`
+    /// for the others).
+    fn raw_edge(
+        &self,
+        index: &[usize],
+        h: usize,
+        tol: f64,
+        wanted: impl Fn(Gen, Gen) -> bool,
+    ) -> Option<RawEdge> {
         let g = &self.graph;
         let he = &g.edges[h];
         let t = he.twin as usize;
@@ -232,19 +245,43 @@ impl SegmentDiagram {
         let (fa, fb) = (he.face, g.edges[t].face);
         let (ga, gb) = (g.faces[fa as usize].gen, g.faces[fb as usize].gen);
         let (ca, cb) = (self.caller_gen(ga)?, self.caller_gen(gb)?);
-        let (pa, pb) = (g.vertices[a].at, g.vertices[b].at);
-        let inv = 1.0 / self.scale;
-        let points = sites
-            .bisector(ga, gb, pa, pb)
-            .polyline(pa, pb, tol * self.scale)
-            .into_iter()
-            .map(|p| p * inv)
-            .collect();
-        Some(RawEdge {
+        let zero = g.vertices[a].at == g.vertices[b].at && {
+            let mut points = Vec::new();
+            self.polyline(h as u32, tol, &mut points);
+            points.windows(2).all(|w| w[0] == w[1])
+        };
+        (zero || wanted(ca, cb)).then_some(RawEdge {
             gens: [ca, cb],
             ends: [index[a], index[b]],
-            points,
+            half: h as u32,
+            zero,
+            on_normal: None,
         })
+    }
+
+    /// Appends to `out` a polyline within `tol` of the bisector of half-edge `h`, from
+    /// its origin to its target, in input coordinates.
+    pub(crate) fn polyline(&self, h: u32, tol: f64, out: &mut Vec<Point>) {
+        let g = &self.graph;
+        let he = &g.edges[h as usize];
+        let tw = &g.edges[he.twin as usize];
+        let (pa, pb) = (
+            g.vertices[he.origin as usize].at,
+            g.vertices[tw.origin as usize].at,
+        );
+        let (ga, gb) = (g.faces[he.face as usize].gen, g.faces[tw.face as usize].gen);
+        let sites = Sites {
+            points: &self.points,
+            lines: &self.lines,
+            arcs: &self.arcs,
+            faces_at_point: &[],
+        };
+        let start = out.len();
+        sites
+            .bisector(ga, gb, pa, pb)
+            .polyline(pa, pb, tol * self.scale, out);
+        let inv = 1.0 / self.scale;
+        out[start..].iter_mut().for_each(|p| *p = *p * inv);
     }
 }
 

@@ -49,27 +49,34 @@ pub(super) fn tangent_joints(
     segments: &[[u32; 2]],
     arcs: &[ArcSpec],
 ) -> HashMap<u32, Joint> {
-    let mut at: HashMap<u32, Vec<(Gen, Point)>> = HashMap::new();
+    // Per point: how many features end there, and the first two with their unit
+    // directions away from it.
+    let none = (Gen::Point(0), Point::default());
+    let mut at: Vec<(u32, [(Gen, Point); 2])> = vec![(0, [none; 2]); points.len()];
+    let mut add = |p: u32, f: Gen, dir: Point| {
+        let (count, first) = &mut at[p as usize];
+        if let Some(slot) = first.get_mut(*count as usize) {
+            *slot = (f, dir);
+        }
+        *count += 1;
+    };
     for (k, &[a, b]) in segments.iter().enumerate() {
         let d = points[b as usize] - points[a as usize];
         let d = d * (1.0 / d.norm());
-        at.entry(a)
-            .or_default()
-            .push((Gen::Segment(k as u32), d * -1.0));
-        at.entry(b).or_default().push((Gen::Segment(k as u32), d));
+        add(a, Gen::Segment(k as u32), d * -1.0);
+        add(b, Gen::Segment(k as u32), d);
     }
     for (k, arc) in arcs.iter().enumerate() {
         // The counter-clockwise tangent, backwards at the start, forwards at the end.
         for (end, angle, sign) in [(0, arc.start, -1.0), (1, arc.start + arc.span, 1.0)] {
             let tangent = Point::new(-angle.sin(), angle.cos()) * sign;
-            at.entry(arc.ends[end])
-                .or_default()
-                .push((Gen::Arc(k as u32), tangent));
+            add(arc.ends[end], Gen::Arc(k as u32), tangent);
         }
     }
-    at.into_iter()
-        .filter_map(|(p, f)| match f[..] {
-            [(f1, a1), (f2, a2)] if (a1 + a2).norm() <= TANGENT_TOL => {
+    (0u32..)
+        .zip(at)
+        .filter_map(|(p, f)| match f {
+            (2, [(f1, a1), (f2, a2)]) if (a1 + a2).norm() <= TANGENT_TOL => {
                 let here = points[p as usize];
                 // The normal from an arc's centre (exact where the joint is axis-aligned
                 // at exact coordinates), else the segment's perpendicular.

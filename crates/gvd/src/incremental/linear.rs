@@ -30,6 +30,7 @@ use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range};
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
+use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 
 /// Whether every site is a Euclidean point, a segment, an arc short of a full circle, a
@@ -73,7 +74,7 @@ struct Generators {
     point_owner: Vec<(usize, Option<usize>)>,
     /// The other sites' corners and point sites at a shared point (vertices there list
     /// them all: they are one point).
-    also: HashMap<u32, Vec<(usize, Option<usize>)>>,
+    also: FxHashMap<u32, Vec<(usize, Option<usize>)>>,
     segments: Vec<[u32; 2]>,
     /// Per segment generator: (site, edge index).
     segment_owner: Vec<(usize, usize)>,
@@ -91,7 +92,7 @@ impl Generators {
         let mut g = Generators {
             points: Vec::new(),
             point_owner: Vec::new(),
-            also: HashMap::new(),
+            also: FxHashMap::default(),
             segments: Vec::new(),
             segment_owner: Vec::new(),
             arcs: Vec::new(),
@@ -99,7 +100,7 @@ impl Generators {
             lonely: Vec::new(),
             rings: Vec::new(),
         };
-        let mut index: HashMap<(u64, u64), u32> = HashMap::new();
+        let mut index: FxHashMap<(u64, u64), u32> = FxHashMap::default();
         let mut point = |g: &mut Generators, p: Point, owner: (usize, Option<usize>)| {
             // −0.0 and 0.0 are the same point.
             let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());

@@ -32,7 +32,7 @@ use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range};
 use crate::Error;
 use geometry::{Arc, Line};
-use graph::{Graph, GHOST};
+use graph::{Graph, GHOST, NONE};
 use insert::{insert_site, InsertError, Scratch, Sites};
 use smallvec::SmallVec;
 
@@ -191,9 +191,9 @@ impl SegmentDiagram {
         let live: Vec<usize> = (0..g.vertices.len())
             .filter(|&v| g.vertices[v].alive && v as u32 != GHOST)
             .collect();
-        let mut index = vec![usize::MAX; g.vertices.len()];
+        let mut index = vec![NONE; g.vertices.len()];
         for (k, &v) in live.iter().enumerate() {
-            index[v] = k;
+            index[v] = k as u32;
         }
         let vertices = map_range(live.len(), 1 << 12, |k| self.raw_vertex(live[k]));
         let edges = filter_map_range(g.edges.len(), 1 << 12, |h| {
@@ -223,11 +223,11 @@ impl SegmentDiagram {
 
     /// The raw edge of half-edge `h` (`None` for the second half-edge of a pair, for
     /// edges at a far generator or the vertex at infinity, and for unwanted edges of
-    /// positive length); `index` maps live vertices to their raw index (`usize::MAX`
-    /// for the others).
+    /// positive length); `index` maps live vertices to their raw index (`NONE` for the
+    /// others).
     fn raw_edge(
         &self,
-        index: &[usize],
+        index: &[u32],
         h: usize,
         tol: f64,
         wanted: impl Fn(Gen, Gen) -> bool,
@@ -239,7 +239,7 @@ impl SegmentDiagram {
             return None;
         }
         let (a, b) = (he.origin as usize, g.edges[t].origin as usize);
-        if index[a] == usize::MAX || index[b] == usize::MAX {
+        if index[a] == NONE || index[b] == NONE {
             return None;
         }
         let (fa, fb) = (he.face, g.edges[t].face);
@@ -252,11 +252,23 @@ impl SegmentDiagram {
         };
         (zero || wanted(ca, cb)).then_some(RawEdge {
             gens: [ca, cb],
-            ends: [index[a], index[b]],
+            ends: [index[a] as usize, index[b] as usize],
             half: h as u32,
             zero,
             on_normal: None,
         })
+    }
+
+    /// Whether the bisector of `a` and `b` is a line: two points, two segments, or a
+    /// segment and one of its ends (the separator).
+    fn straight(&self, a: Gen, b: Gen) -> bool {
+        match (a, b) {
+            (Gen::Point(_), Gen::Point(_)) | (Gen::Segment(_), Gen::Segment(_)) => true,
+            (Gen::Point(p), Gen::Segment(s)) | (Gen::Segment(s), Gen::Point(p)) => {
+                self.lines[s as usize].ends.contains(&p)
+            }
+            _ => false,
+        }
     }
 
     /// Appends to `out` a polyline within `tol` of the bisector of half-edge `h`, from
@@ -270,6 +282,11 @@ impl SegmentDiagram {
             g.vertices[tw.origin as usize].at,
         );
         let (ga, gb) = (g.faces[he.face as usize].gen, g.faces[tw.face as usize].gen);
+        let inv = 1.0 / self.scale;
+        if self.straight(ga, gb) {
+            out.extend([pa * inv, pb * inv]);
+            return;
+        }
         let sites = Sites {
             points: &self.points,
             lines: &self.lines,
@@ -280,7 +297,6 @@ impl SegmentDiagram {
         sites
             .bisector(ga, gb, pa, pb)
             .polyline(pa, pb, tol * self.scale, out);
-        let inv = 1.0 / self.scale;
         out[start..].iter_mut().for_each(|p| *p = *p * inv);
     }
 }

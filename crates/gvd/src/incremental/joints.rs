@@ -18,7 +18,7 @@
 
 use super::segments::{ArcSpec, Gen, RawEdge, RawVertex};
 use crate::geom::Point;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// How far from opposite two features' directions away from a shared end may be
 /// (the sine of the angle between their normals) for a tangent joint: within
@@ -48,7 +48,7 @@ pub(super) fn tangent_joints(
     points: &[Point],
     segments: &[[u32; 2]],
     arcs: &[ArcSpec],
-) -> HashMap<u32, Joint> {
+) -> FxHashMap<u32, Joint> {
     // Per point: how many features end there, and the first two with their unit
     // directions away from it.
     let none = (Gen::Point(0), Point::default());
@@ -106,7 +106,7 @@ pub(super) fn tangent_joints(
 /// without a vertex at `P` on either side, or with a tip edge longer than `tip_tol`
 /// (by `length`), is left as it is.
 pub(super) fn collapse(
-    joints: &HashMap<u32, Joint>,
+    joints: &FxHashMap<u32, Joint>,
     tip_tol: f64,
     vertices: &mut [RawVertex],
     edges: &mut Vec<RawEdge>,
@@ -126,7 +126,7 @@ pub(super) fn collapse(
     };
     // The side through P's vertex, per joint; none where a tip edge is longer than
     // `tip_tol` (it is zero up to rounding): then the face is no sliver and stays.
-    let mut keep: HashMap<u32, usize> = HashMap::new();
+    let mut keep: FxHashMap<u32, usize> = FxHashMap::default();
     for e in edges.iter() {
         if let Some((p, Some(side))) = role(e) {
             if e.ends.iter().any(|&v| vertices[v].t == 0.0) {
@@ -177,8 +177,8 @@ pub(super) fn collapse(
 /// (clearance 0 at the joint), with its end vertices, on the joint's normal, where it
 /// lies: the engine's points are on that line only up to rounding. The edge's polyline
 /// is projected onto the normal when it is drawn ([`RawEdge::on_normal`]).
-fn onto_normals(joints: &HashMap<u32, Joint>, vertices: &mut [RawVertex], edges: &mut [RawEdge]) {
-    let by_pair: HashMap<[Gen; 2], (u32, &Joint)> = joints
+fn onto_normals(joints: &FxHashMap<u32, Joint>, vertices: &mut [RawVertex], edges: &mut [RawEdge]) {
+    let by_pair: FxHashMap<[Gen; 2], (u32, &Joint)> = joints
         .iter()
         .flat_map(|(&p, j)| {
             let [a, b] = j.features;

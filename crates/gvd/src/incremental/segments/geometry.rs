@@ -161,9 +161,10 @@ pub(crate) fn ray_exit(id: u32, p: Point, dir: Point, other: Shape) -> Option<f6
     (s > 0.0 && s.is_finite()).then_some(s)
 }
 
-/// Half the bracket around a closed form's guess that [`Bisector::boundary_near`]
-/// refines, as a fraction of the parameter range: far wider than the guess's rounding.
-const GUESS_BRACKET: f64 = 1.0 / (1u64 << 24) as f64;
+/// Half the brackets around a closed form's guess that [`Bisector::boundary_near`]
+/// refines, narrowest first, as fractions of the parameter range: the narrow one is
+/// wider than the guess's rounding on most edges, the wide one on nearly all.
+const GUESS_BRACKETS: [f64; 2] = [1.0 / (1u64 << 40) as f64, 1.0 / (1u64 << 24) as f64];
 
 /// A generator's geometry, for bisectors.
 #[derive(Clone, Copy, Debug)]
@@ -354,9 +355,9 @@ impl Bisector {
     }
 
     /// [`boundary`](Self::boundary) from a close guess (a fraction of the parameter
-    /// range): the bisection runs in a bracket of `±GUESS_BRACKET` around it, which
-    /// takes about half the steps, when the bracket's ends are inside and outside
-    /// (`None` otherwise).
+    /// range): the bisection runs in the first bracket of [`GUESS_BRACKETS`] around it
+    /// whose ends are inside and outside, which takes far fewer steps (`None` when
+    /// none is).
     pub(crate) fn boundary_near(
         &self,
         from: Point,
@@ -366,9 +367,13 @@ impl Bisector {
     ) -> Option<(Point, f64)> {
         let (s0, s1) = self.range(from, to);
         let at = |lambda: f64| self.point(from, to, s0 + (s1 - s0) * lambda.clamp(0.0, 1.0));
-        let (lo, hi) = (at(guess - GUESS_BRACKET), at(guess + GUESS_BRACKET));
-        (guess.is_finite() && inside(lo.0, lo.1) && !inside(hi.0, hi.1))
-            .then(|| self.boundary(lo.0, hi.0, inside))
+        if !guess.is_finite() {
+            return None;
+        }
+        GUESS_BRACKETS.iter().find_map(|&half| {
+            let (lo, hi) = (at(guess - half), at(guess + half));
+            (inside(lo.0, lo.1) && !inside(hi.0, hi.1)).then(|| self.boundary(lo.0, hi.0, &inside))
+        })
     }
 
     /// Appends to `out` a polyline from `from` to `to` within `tol` of the bisector.

@@ -508,7 +508,7 @@ pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, 
     phases.end("input");
     let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain)?;
     phases.end("construction");
-    let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases);
+    let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases)?;
     phases.end("assembly");
     complex.stats.insert(
         "topology_overrides".into(),
@@ -723,14 +723,14 @@ fn assemble(
     diagram: &SegmentDiagram,
     bisectors: bool,
     phases: &mut Phases,
-) -> VoronoiComplex {
+) -> Result<VoronoiComplex, Error> {
     let mode = scene.mode;
     let tol = scene.epsilon / 4.0;
     let joints = joints::tangent_joints(&g.points, &g.segments, &g.arcs);
     let at_joint = |x: Gen| matches!(x, Gen::Point(p) if joints.contains_key(&p));
     let (mut raw_vertices, mut raw_edges) = diagram.raw(tol, |a, b| {
         g.shown(a, b, mode) || at_joint(a) || at_joint(b)
-    });
+    })?;
     phases.end("raw");
     let nv = raw_vertices.len();
     // Contracting a tip moves edge ends by its length: at most epsilon/8 (tips are
@@ -896,7 +896,7 @@ fn assemble(
             });
         }
     }
-    out
+    Ok(out)
 }
 
 /// The pieces of a polyline inside the closed box `b`, each with whether its start and

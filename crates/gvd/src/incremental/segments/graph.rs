@@ -173,36 +173,10 @@ impl Graph {
 }
 
 impl Graph {
-    /// Checks the half-edge invariants of the live part of the graph: twins pair up,
-    /// `next`/`prev` are inverse, a face's cycle keeps its face, and consecutive
-    /// half-edges meet at a vertex. Returns the first violation.
-    pub(crate) fn check(&self) -> Result<(), String> {
-        let edge = |h: usize| self.check_edge(h).err();
-        #[cfg(feature = "parallel")]
-        let wrong = {
-            use rayon::prelude::*;
-            (0..self.edges.len())
-                .into_par_iter()
-                .with_min_len(1 << 14)
-                .find_map_first(edge)
-        };
-        #[cfg(not(feature = "parallel"))]
-        let wrong = (0..self.edges.len()).find_map(edge);
-        if let Some(e) = wrong {
-            return Err(e);
-        }
-        for (v, vx) in self.vertices.iter().enumerate() {
-            if vx.alive && (vx.out == NONE || self.edges[vx.out as usize].origin as usize != v) {
-                return Err(format!("vertex {v} has a wrong outgoing half-edge"));
-            }
-        }
-        Ok(())
-    }
-}
-
-impl Graph {
-    /// The half-edge invariants at half-edge `h` (none if either end is dead).
-    fn check_edge(&self, h: usize) -> Result<(), String> {
+    /// The half-edge invariants at half-edge `h` (none if either end is dead): twins
+    /// pair up, `next`/`prev` are inverse, a face's cycle keeps its face, and
+    /// consecutive half-edges meet at a vertex.
+    pub(crate) fn check_edge(&self, h: usize) -> Result<(), String> {
         let alive = |h: usize| {
             let e = &self.edges[h];
             self.vertices[e.origin as usize].alive
@@ -226,6 +200,15 @@ impl Graph {
         }
         if self.edges[e.next as usize].origin != self.target(h as u32) {
             return Err(format!("next of {h} does not start where {h} ends"));
+        }
+        Ok(())
+    }
+
+    /// Whether live vertex `v`'s outgoing half-edge leaves it.
+    pub(crate) fn check_vertex(&self, v: usize) -> Result<(), String> {
+        let out = self.vertices[v].out;
+        if out == NONE || self.edges[out as usize].origin as usize != v {
+            return Err(format!("vertex {v} has a wrong outgoing half-edge"));
         }
         Ok(())
     }

@@ -152,9 +152,6 @@ impl SegmentDiagram {
                 faces_at_point[p as usize].push(face);
             }
         }
-        if let Err(e) = graph.check() {
-            return Err(Error::Internal(format!("invalid segment graph: {e}")));
-        }
         Ok(SegmentDiagram {
             overrides: scratch.overrides,
             graph,
@@ -181,12 +178,13 @@ impl SegmentDiagram {
 
     /// Every finite vertex (with its real generators), and the edges between two real
     /// generators that are `wanted` or of zero length (judged on their polylines within
-    /// `tol`), in input coordinates.
+    /// `tol`), in input coordinates; an error if the graph breaks a half-edge invariant
+    /// (checked here, in the same pass).
     pub(crate) fn raw(
         &self,
         tol: f64,
         wanted: impl Fn(Gen, Gen) -> bool + Sync,
-    ) -> (Vec<RawVertex>, Vec<RawEdge>) {
+    ) -> Result<(Vec<RawVertex>, Vec<RawEdge>), Error> {
         let g = &self.graph;
         let live: Vec<usize> = (0..g.vertices.len())
             .filter(|&v| g.vertices[v].alive && v as u32 != GHOST)
@@ -195,11 +193,25 @@ impl SegmentDiagram {
         for (k, &v) in live.iter().enumerate() {
             index[v] = k as u32;
         }
-        let vertices = map_range(live.len(), 1 << 12, |k| self.raw_vertex(live[k]));
-        let edges = filter_map_range(g.edges.len(), 1 << 12, |h| {
-            self.raw_edge(&index, h, tol, &wanted)
+        // The half-edge invariants are checked on the way, before any vertex's edges
+        // are walked around it.
+        let invalid = |e: String| Error::Internal(format!("invalid segment graph: {e}"));
+        let edges = filter_map_range(g.edges.len(), 1 << 12, |h| match g.check_edge(h) {
+            Ok(()) => self.raw_edge(&index, h, tol, &wanted).map(Ok),
+            Err(e) => Some(Err(e)),
         });
-        (vertices, edges)
+        let edges = edges
+            .into_iter()
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(invalid)?;
+        let vertices = map_range(live.len(), 1 << 12, |k| {
+            g.check_vertex(live[k]).map(|()| self.raw_vertex(live[k]))
+        });
+        let vertices = vertices
+            .into_iter()
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(invalid)?;
+        Ok((vertices, edges))
     }
 
     /// The raw vertex of live graph vertex `v`, with its generators, each once.

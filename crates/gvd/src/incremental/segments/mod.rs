@@ -35,6 +35,7 @@ use geometry::{Arc, Line};
 use graph::{Graph, GHOST, NONE};
 use insert::{insert_site, InsertError, Scratch, Sites};
 use smallvec::SmallVec;
+use std::sync::Mutex;
 
 /// The diagram of points and non-crossing segments, as a general half-edge graph.
 pub(crate) struct SegmentDiagram {
@@ -65,6 +66,7 @@ pub(crate) struct RawEdge {
 }
 
 /// A vertex of the raw diagram with the generators of the faces around it.
+#[derive(Default)]
 pub(crate) struct RawVertex {
     pub(crate) at: Point,
     /// Clearance: 0 for a vertex on a site (a segment endpoint).
@@ -194,23 +196,33 @@ impl SegmentDiagram {
             index[v] = k as u32;
         }
         // The half-edge invariants are checked on the way, before any vertex's edges
-        // are walked around it.
-        let invalid = |e: String| Error::Internal(format!("invalid segment graph: {e}"));
+        // are walked around it; `broken` keeps the first broken one found.
+        let broken: Mutex<Option<String>> = Mutex::new(None);
+        let record = |e: String| {
+            if let Ok(mut first) = broken.lock() {
+                first.get_or_insert(e);
+            }
+        };
+        let check = || match broken.lock().ok().and_then(|mut b| b.take()) {
+            Some(e) => Err(Error::Internal(format!("invalid segment graph: {e}"))),
+            None => Ok(()),
+        };
         let edges = filter_map_range(g.edges.len(), 1 << 12, |h| match g.check_edge(h) {
-            Ok(()) => self.raw_edge(&index, h, tol, &wanted).map(Ok),
-            Err(e) => Some(Err(e)),
+            Ok(()) => self.raw_edge(&index, h, tol, &wanted),
+            Err(e) => {
+                record(e);
+                None
+            }
         });
-        let edges = edges
-            .into_iter()
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(invalid)?;
-        let vertices = map_range(live.len(), 1 << 12, |k| {
-            g.check_vertex(live[k]).map(|()| self.raw_vertex(live[k]))
+        check()?;
+        let vertices = map_range(live.len(), 1 << 12, |k| match g.check_vertex(live[k]) {
+            Ok(()) => self.raw_vertex(live[k]),
+            Err(e) => {
+                record(e);
+                RawVertex::default() // a placeholder: the error is returned
+            }
         });
-        let vertices = vertices
-            .into_iter()
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(invalid)?;
+        check()?;
         Ok((vertices, edges))
     }
 

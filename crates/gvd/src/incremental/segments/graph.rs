@@ -175,12 +175,12 @@ impl Graph {
 impl Graph {
     /// The half-edge invariants at half-edge `h` (none if either end is dead): twins
     /// pair up, `next`/`prev` are inverse, a face's cycle keeps its face, and
-    /// consecutive half-edges meet at a vertex.
-    pub(crate) fn check_edge(&self, h: usize) -> Result<(), String> {
+    /// consecutive half-edges meet at a vertex. `alive` holds each vertex's flag (a
+    /// compact copy, kinder to the cache).
+    pub(crate) fn check_edge(&self, h: usize, alive: &[bool]) -> Result<(), String> {
         let alive = |h: usize| {
             let e = &self.edges[h];
-            self.vertices[e.origin as usize].alive
-                && self.vertices[self.edges[e.twin as usize].origin as usize].alive
+            alive[e.origin as usize] && alive[self.edges[e.twin as usize].origin as usize]
         };
         if !alive(h) {
             return Ok(());

@@ -188,8 +188,9 @@ impl SegmentDiagram {
         wanted: impl Fn(Gen, Gen) -> bool + Sync,
     ) -> Result<(Vec<RawVertex>, Vec<RawEdge>), Error> {
         let g = &self.graph;
+        let alive: Vec<bool> = g.vertices.iter().map(|v| v.alive).collect();
         let live: Vec<usize> = (0..g.vertices.len())
-            .filter(|&v| g.vertices[v].alive && v as u32 != GHOST)
+            .filter(|&v| alive[v] && v as u32 != GHOST)
             .collect();
         let mut index = vec![NONE; g.vertices.len()];
         for (k, &v) in live.iter().enumerate() {
@@ -207,7 +208,7 @@ impl SegmentDiagram {
             Some(e) => Err(Error::Internal(format!("invalid segment graph: {e}"))),
             None => Ok(()),
         };
-        let edges = filter_map_range(g.edges.len(), 1 << 12, |h| match g.check_edge(h) {
+        let edges = filter_map_range(g.edges.len(), 1 << 12, |h| match g.check_edge(h, &alive) {
             Ok(()) => self.raw_edge(&index, h, tol, &wanted),
             Err(e) => {
                 record(e);

@@ -770,8 +770,9 @@ fn assemble(
     // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
     let hair = 1e-9 * domain.longest_side();
     let (chains, links) = chain_edges(&kept, &labels, |v| raw_vertices[v].t <= hair);
-    // A chain's polyline: its edges' polylines in order, each projected onto its line
-    // if it has one, from its ends' (merged) vertices, with the stretches they make.
+    // A chain's polyline: its edges' polylines in order (each projected onto its
+    // tangent joint's normal if it lies on one), from their ends' merged vertices, with
+    // the stretches they make.
     let draw = |chain: &Chain| {
         let (mut points, mut stretches, mut edge) = (Vec::new(), Vec::new(), Vec::new());
         for &(k, forward) in &links[chain.links.clone()] {

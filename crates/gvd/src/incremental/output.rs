@@ -6,7 +6,7 @@ use super::predicates::{circumcenter, incircle};
 use super::PointDiagram;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
-use crate::par::{filter_map_range, unzip_range};
+use crate::par::{filter_map_range, map_range, unzip_range};
 
 /// Union–find with path halving.
 fn find(parent: &mut [u32], mut v: u32) -> u32 {
@@ -87,23 +87,22 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
     // numbered in vertex order.
     let inv = 1.0 / d.scale;
     let site = |s: u32| Generator::Site(d.input[s as usize] as usize);
-    let mut count = 0u32;
+    let mut outs: Vec<u32> = Vec::new();
     for v in 0..nv {
         let rep = if merged { parent[v] as usize } else { v };
         if rep == v && real(v) && d.domain.contains(nodes[v].at) {
-            nodes[v].out = count;
-            count += 1;
+            nodes[v].out = outs.len() as u32;
+            outs.push(v as u32);
         }
     }
-    let mut vertices = filter_map_range(nv, 1 << 12, |v| {
-        (nodes[v].out != u32::MAX).then(|| {
-            let mut ids = g.gens[v].map(|s| d.input[s as usize]);
-            ids.sort_unstable();
-            Vertex {
-                at: nodes[v].at * inv,
-                sites: ids.iter().map(|&i| Generator::Site(i as usize)).collect(),
-            }
-        })
+    let mut vertices = map_range(outs.len(), 1 << 12, |k| {
+        let v = outs[k] as usize;
+        let mut ids = g.gens[v].map(|s| d.input[s as usize]);
+        ids.sort_unstable();
+        Vertex {
+            at: nodes[v].at * inv,
+            sites: ids.map(|i| Generator::Site(i as usize)).into(),
+        }
     });
     if merged {
         for v in 0..nv {
@@ -125,21 +124,23 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
         }
     }
 
-    // Edges between real sites, between distinct groups, clipped to the domain.
-    let edges = filter_map_range(g.twin.len(), 1 << 12, |h| {
+    // Edges between real sites, between distinct groups, clipped to the domain: their
+    // half-edges first, so that the edges are written in place.
+    let kept = filter_map_range(g.twin.len(), 1 << 12, |h| {
         let h = h as u32;
-        if h > g.twin[h as usize] {
-            return None;
-        }
-        let ((start, end), (from, to)) = clip(d, &nodes, h)?;
+        (h < g.twin[h as usize] && clip(d, &nodes, h).is_some()).then_some(h)
+    });
+    let edges = map_range(kept.len(), 1 << 12, |k| {
+        let h = kept[k];
+        let ((start, end), (from, to)) = clip(d, &nodes, h).expect("a kept edge");
         let (a, b) = (g.right(h), g.left(h));
-        Some(Edge {
+        Edge {
             sites: [site(b), site(a)],
             from,
             to,
-            points: vec![start * inv, end * inv],
+            points: [start * inv, end * inv].into(),
             bisector: Vec::new(),
-        })
+        }
     });
 
     let mut c = VoronoiComplex {

@@ -3,7 +3,7 @@
 
 use crate::geom::Point;
 use serde::{Deserialize, Serialize};
-/// The inline vectors of [`Vertex::sites`] and [`Edge::points`], re-exported for
+/// The inline vectors of [`Vertex::sites`], [`Edge::points`] and [`Cell::rings`], re-exported for
 /// callers that build diagrams.
 pub use smallvec::{smallvec, SmallVec};
 use std::collections::BTreeMap;
@@ -99,7 +99,8 @@ impl BisectorPiece {
 #[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
 pub struct Cell {
     pub site: usize,
-    pub rings: Vec<Vec<Point>>,
+    /// Usually one (a cell with holes has more), stored inline.
+    pub rings: SmallVec<[Vec<Point>; 1]>,
 }
 
 /// The Voronoi diagram (or complex, or medial axis) of a scene.

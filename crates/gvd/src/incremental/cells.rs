@@ -4,8 +4,9 @@
 //! face leaves the domain and comes back.
 
 use super::PointDiagram;
-use crate::complex::Cell;
+use crate::complex::{smallvec, Cell};
 use crate::geom::{Aabb, Point};
+use crate::par::map_range;
 
 /// Why a face could not be traced; the caller then falls back to the generic
 /// [`crate::cells::build_cells`]. Not expected with exact signs.
@@ -77,28 +78,21 @@ pub(super) fn face_cells(
         Ok(
             (ring.len() >= 3 && area > 0.0 && area.is_finite()).then(|| Cell {
                 site: d.input[s] as usize,
-                rings: vec![ring],
+                rings: smallvec![ring],
             }),
         )
     };
 
-    #[cfg(feature = "parallel")]
-    let traced: Vec<Option<Cell>> = {
-        use rayon::prelude::*;
-        (0..n)
-            .into_par_iter()
-            .map(trace)
-            .collect::<Result<_, _>>()?
-    };
-    #[cfg(not(feature = "parallel"))]
-    let traced: Vec<Option<Cell>> = (0..n).map(trace).collect::<Result<_, _>>()?;
+    let traced = map_range(n, 1 << 10, trace);
     let mut by_site: Vec<Option<Cell>> = Vec::new();
     by_site.resize_with(n, || None);
     let mut any = false;
-    for c in traced.into_iter().flatten() {
-        let site = c.site;
-        by_site[site] = Some(c);
-        any = true;
+    for c in traced {
+        if let Some(c) = c? {
+            let site = c.site;
+            by_site[site] = Some(c);
+            any = true;
+        }
     }
     if !any {
         // No edge meets the domain: it lies in one cell, the nearest site's to its
@@ -114,7 +108,7 @@ pub(super) fn face_cells(
         });
         return Ok(vec![Cell {
             site: d.input[best] as usize,
-            rings: vec![domain.corners().to_vec()],
+            rings: smallvec![domain.corners().to_vec()],
         }]);
     }
     Ok(by_site.into_iter().flatten().collect())

@@ -128,11 +128,13 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
     // half-edges first, so that the edges are written in place.
     let kept = filter_map_range(g.twin.len(), 1 << 12, |h| {
         let h = h as u32;
-        (h < g.twin[h as usize] && clip(d, &nodes, h).is_some()).then_some(h)
+        let t = g.twin[h as usize];
+        (h < t && clip(d, &nodes, h, t).is_some()).then_some(h)
     });
     let edges = map_range(kept.len(), 1 << 12, |k| {
         let h = kept[k];
-        let ((start, end), (from, to)) = clip(d, &nodes, h).expect("a kept edge");
+        let ((start, end), (from, to)) =
+            clip(d, &nodes, h, g.twin[h as usize]).expect("a kept edge");
         let (a, b) = (g.right(h), g.left(h));
         Edge {
             sites: [site(b), site(a)],
@@ -153,7 +155,7 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
         // The same segments as the edges, in the direction of each half-edge.
         let segment = |h: u32| {
             let t = g.twin[h as usize];
-            let ((p, q), _) = clip(d, &nodes, h.min(t))?;
+            let ((p, q), _) = clip(d, &nodes, h.min(t), h.max(t))?;
             Some(if h < t {
                 (p * inv, q * inv)
             } else {
@@ -181,7 +183,7 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
     (c, traced)
 }
 
-/// The edge of half-edge `h` (`h < twin(h)`, from `u = h / 3` to `w = twin(h) / 3`) as
+/// The edge of half-edge `h` (`h < t = twin(h)`, from `u = h / 3` to `w = t / 3`) as
 /// output: its segment clipped to the domain (scaled coordinates) and its end vertices'
 /// output indices, or `None` when it separates a far generator, joins two vertices of
 /// one group, or meets the domain in less than a segment.
@@ -191,9 +193,9 @@ fn clip(
     d: &PointDiagram,
     nodes: &[Node],
     h: u32,
+    t: u32,
 ) -> Option<((Point, Point), (Option<usize>, Option<usize>))> {
     let g = &d.graph;
-    let t = g.twin[h as usize];
     let (nu, nw) = (nodes[h as usize / 3], nodes[t as usize / 3]);
     if nu.group == nw.group {
         return None;

@@ -157,7 +157,7 @@ mod tests {
         }
         d.cells.push(crate::complex::Cell {
             site: 3,
-            rings: vec![vec![
+            rings: smallvec![vec![
                 Point::new(0.0, 0.0),
                 Point::new(1.0, 0.0),
                 Point::new(0.0, 1.0),

@@ -581,7 +581,7 @@ mod tests {
             ],
             cells: vec![Cell {
                 site: 0,
-                rings: vec![vec![p(-2.0, -1.0), p(0.0, 0.0), p(-2.0, 1.0)]],
+                rings: smallvec![vec![p(-2.0, -1.0), p(0.0, 0.0), p(-2.0, 1.0)]],
             }],
             ..Default::default()
         };

@@ -83,18 +83,20 @@ pub(super) fn face_cells(
         )
     };
 
-    let traced = map_range(n, 1 << 10, trace);
-    let mut by_site: Vec<Option<Cell>> = Vec::new();
-    by_site.resize_with(n, || None);
-    let mut any = false;
-    for c in traced {
-        if let Some(c) = c? {
-            let site = c.site;
-            by_site[site] = Some(c);
-            any = true;
+    // Traced in insertion order (neighbouring faces share vertices), then gathered by
+    // site: input point i was inserted at position `at[i]`.
+    let mut traced = map_range(n, 1 << 10, trace);
+    let mut at = vec![0u32; n];
+    for (s, &i) in d.input.iter().enumerate() {
+        at[i as usize] = s as u32;
+    }
+    let mut cells = Vec::new();
+    for &s in &at {
+        if let Some(c) = std::mem::replace(&mut traced[s as usize], Ok(None))? {
+            cells.push(c);
         }
     }
-    if !any {
+    if cells.is_empty() {
         // No edge meets the domain: it lies in one cell, the nearest site's to its
         // centre (the least index among equals).
         let c = d.domain.center();
@@ -111,7 +113,7 @@ pub(super) fn face_cells(
             rings: smallvec![domain.corners().to_vec()],
         }]);
     }
-    Ok(by_site.into_iter().flatten().collect())
+    Ok(cells)
 }
 
 /// The domain boundary, parametrized counter-clockwise from `min` by arc length.

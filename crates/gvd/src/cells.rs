@@ -534,7 +534,7 @@ fn point_in_ring(p: Point, ring: &[Point]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::complex::{Edge, Generator, Vertex};
+    use crate::complex::{smallvec, Edge, Generator, Vertex};
     use crate::scene::{Metric, Mode, Scene, Site, SiteKind};
 
     const SQUARE: Aabb = Aabb::new(Point::new(-1.0, -1.0), Point::new(1.0, 1.0));
@@ -765,7 +765,7 @@ mod tests {
                 from: None,
                 bisector: Vec::new(),
                 to: None,
-                points,
+                points: points.into(),
             })
             .collect();
         let label = |p: Point| match p.dist(centre) {
@@ -846,11 +846,11 @@ mod tests {
             2,
         ));
         c.edges.push(Edge {
-            points: vec![Point::new(f64::NAN, 0.0); 3],
+            points: smallvec![Point::new(f64::NAN, 0.0); 3],
             ..c.edges[0].clone()
         });
         c.edges.push(Edge {
-            points: vec![],
+            points: smallvec![],
             ..c.edges[0].clone()
         });
         let cells = build_cells(&c, &SQUARE, &|p: Point| usize::from(p.x > 0.0));

@@ -3,6 +3,9 @@
 
 use crate::geom::Point;
 use serde::{Deserialize, Serialize};
+/// The inline vectors of [`Vertex::sites`], [`Edge::points`] and [`Cell::rings`], re-exported for
+/// callers that build diagrams.
+pub use smallvec::{smallvec, SmallVec};
 use std::collections::BTreeMap;
 
 /// A feature of a site with features (corner, edge or curve piece), used as a generator
@@ -42,7 +45,8 @@ impl Generator {
 #[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
 pub struct Vertex {
     pub at: Point,
-    pub sites: Vec<Generator>,
+    /// Usually three, stored inline.
+    pub sites: SmallVec<[Generator; 3]>,
 }
 
 /// A Voronoi edge: a polyline within epsilon of the bisector of its two generators,
@@ -52,7 +56,8 @@ pub struct Edge {
     pub sites: [Generator; 2],
     pub from: Option<usize>,
     pub to: Option<usize>,
-    pub points: Vec<Point>,
+    /// Two for a straight edge, stored inline.
+    pub points: SmallVec<[Point; 2]>,
     /// The exact bisector under `points`, piece by piece in their order (empty when not
     /// asked for, or when a piece has constant clearance; see [`BisectorPiece`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -94,7 +99,8 @@ impl BisectorPiece {
 #[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
 pub struct Cell {
     pub site: usize,
-    pub rings: Vec<Vec<Point>>,
+    /// Usually one (a cell with holes has more), stored inline.
+    pub rings: SmallVec<[Vec<Point>; 1]>,
 }
 
 /// The Voronoi diagram (or complex, or medial axis) of a scene.

@@ -24,6 +24,24 @@ pub(crate) fn map_range<T: Send>(
     }
 }
 
+/// `(0..n).map(f).unzip()`: two vectors filled in order in one pass.
+pub(crate) fn unzip_range<A: Send, B: Send>(
+    n: usize,
+    min_len: usize,
+    f: impl Fn(usize) -> (A, B) + Sync + Send,
+) -> (Vec<A>, Vec<B>) {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..n).into_par_iter().with_min_len(min_len).map(f).unzip()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        let _ = min_len;
+        (0..n).map(f).unzip()
+    }
+}
+
 /// `(0..n).filter_map(f)`, collected in order.
 pub(crate) fn filter_map_range<T: Send>(
     n: usize,

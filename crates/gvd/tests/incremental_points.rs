@@ -646,8 +646,7 @@ fn duplicates_keep_the_least_index() {
     }
     let (out, reference) = (d.to_complex(), points_voronoi(&base, dom).unwrap());
     let key = |c: &VoronoiComplex| {
-        let mut v: Vec<(Vec<Generator>, Point)> =
-            c.vertices.iter().map(|v| (v.sites.clone(), v.at)).collect();
+        let mut v: Vec<_> = c.vertices.iter().map(|v| (v.sites.clone(), v.at)).collect();
         v.sort_by(|a, b| a.0.cmp(&b.0));
         let mut e: Vec<([Generator; 2], f64)> = c
             .edges

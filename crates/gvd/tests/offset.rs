@@ -298,7 +298,7 @@ fn diagram_edge(sites: [Generator; 2], points: Vec<Point>) -> Edge {
         from: None,
         bisector: Vec::new(),
         to: None,
-        points,
+        points: points.into(),
     }
 }
 

@@ -4,7 +4,7 @@
 //! edge, an edge naming an edge instead of its end corner, a zone boundary offered as an
 //! edge) fail.
 
-use gvd::complex::{Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
+use gvd::complex::{smallvec, Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
 use gvd::geom::{Aabb, Point};
 use gvd::scene::{Mode, Site, SiteKind};
 use gvd::verify::{verify, Report, VerifyOptions};
@@ -236,11 +236,11 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
         vertices: vec![
             Vertex {
                 at: v0,
-                sites: vec![edge_gen(0, 0), edge_gen(0, 2), edge_gen(0, 3)],
+                sites: smallvec![edge_gen(0, 0), edge_gen(0, 2), edge_gen(0, 3)],
             },
             Vertex {
                 at: v1,
-                sites: vec![edge_gen(0, 0), edge_gen(0, 1), edge_gen(0, 2)],
+                sites: smallvec![edge_gen(0, 0), edge_gen(0, 1), edge_gen(0, 2)],
             },
         ],
         edges: vec![
@@ -249,35 +249,35 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
                 from: Some(0),
                 bisector: Vec::new(),
                 to: Some(1),
-                points: vec![v0, v1],
+                points: smallvec![v0, v1],
             },
             Edge {
                 sites: [edge_gen(0, 0), edge_gen(0, 3)],
                 from: None,
                 bisector: Vec::new(),
                 to: Some(0),
-                points: vec![p(-1.0, -0.5), v0],
+                points: smallvec![p(-1.0, -0.5), v0],
             },
             Edge {
                 sites: [edge_gen(0, 2), edge_gen(0, 3)],
                 from: None,
                 bisector: Vec::new(),
                 to: Some(0),
-                points: vec![p(-1.0, 0.5), v0],
+                points: smallvec![p(-1.0, 0.5), v0],
             },
             Edge {
                 sites: [edge_gen(0, 0), edge_gen(0, 1)],
                 from: None,
                 bisector: Vec::new(),
                 to: Some(1),
-                points: vec![p(1.0, -0.5), v1],
+                points: smallvec![p(1.0, -0.5), v1],
             },
             Edge {
                 sites: [edge_gen(0, 1), edge_gen(0, 2)],
                 from: None,
                 bisector: Vec::new(),
                 to: Some(1),
-                points: vec![p(1.0, 0.5), v1],
+                points: smallvec![p(1.0, 0.5), v1],
             },
         ],
         ..Default::default()
@@ -299,7 +299,7 @@ fn exact_medial_axis_of_a_rectangle_passes() {
 fn medial_axis_outside_the_region_and_zone_boundaries_fail() {
     // a bisector of the long edges continued outside the rectangle
     let (s, mut d) = rectangle_medial_axis();
-    d.edges[0].points = vec![Point::new(-0.5, 0.0), Point::new(-2.5, 0.0)];
+    d.edges[0].points = smallvec![Point::new(-0.5, 0.0), Point::new(-2.5, 0.0)];
     d.edges[0].to = None;
     let r = check(&s, &d);
     assert!(!r.passed, "{}", r.summary_line());
@@ -318,7 +318,7 @@ fn medial_axis_outside_the_region_and_zone_boundaries_fail() {
             from: None,
             bisector: Vec::new(),
             to: None,
-            points: vec![Point::new(1.0, -0.5), Point::new(1.0, -1.0)],
+            points: smallvec![Point::new(1.0, -0.5), Point::new(1.0, -1.0)],
         }],
         ..Default::default()
     };

@@ -4,8 +4,9 @@
 //! face leaves the domain and comes back.
 
 use super::PointDiagram;
-use crate::complex::Cell;
+use crate::complex::{smallvec, Cell};
 use crate::geom::{Aabb, Point};
+use crate::par::map_range;
 
 /// Why a face could not be traced; the caller then falls back to the generic
 /// [`crate::cells::build_cells`]. Not expected with exact signs.
@@ -77,30 +78,25 @@ pub(super) fn face_cells(
         Ok(
             (ring.len() >= 3 && area > 0.0 && area.is_finite()).then(|| Cell {
                 site: d.input[s] as usize,
-                rings: vec![ring],
+                rings: smallvec![ring],
             }),
         )
     };
 
-    #[cfg(feature = "parallel")]
-    let traced: Vec<Option<Cell>> = {
-        use rayon::prelude::*;
-        (0..n)
-            .into_par_iter()
-            .map(trace)
-            .collect::<Result<_, _>>()?
-    };
-    #[cfg(not(feature = "parallel"))]
-    let traced: Vec<Option<Cell>> = (0..n).map(trace).collect::<Result<_, _>>()?;
-    let mut by_site: Vec<Option<Cell>> = Vec::new();
-    by_site.resize_with(n, || None);
-    let mut any = false;
-    for c in traced.into_iter().flatten() {
-        let site = c.site;
-        by_site[site] = Some(c);
-        any = true;
+    // Traced in insertion order (neighbouring faces share vertices), then gathered by
+    // site: input point i was inserted at position `at[i]`.
+    let mut traced = map_range(n, 1 << 10, trace);
+    let mut at = vec![0u32; n];
+    for (s, &i) in d.input.iter().enumerate() {
+        at[i as usize] = s as u32;
     }
-    if !any {
+    let mut cells = Vec::new();
+    for &s in &at {
+        if let Some(c) = std::mem::replace(&mut traced[s as usize], Ok(None))? {
+            cells.push(c);
+        }
+    }
+    if cells.is_empty() {
         // No edge meets the domain: it lies in one cell, the nearest site's to its
         // centre (the least index among equals).
         let c = d.domain.center();
@@ -114,10 +110,10 @@ pub(super) fn face_cells(
         });
         return Ok(vec![Cell {
             site: d.input[best] as usize,
-            rings: vec![domain.corners().to_vec()],
+            rings: smallvec![domain.corners().to_vec()],
         }]);
     }
-    Ok(by_site.into_iter().flatten().collect())
+    Ok(cells)
 }
 
 /// The domain boundary, parametrized counter-clockwise from `min` by arc length.

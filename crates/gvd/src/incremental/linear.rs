@@ -811,7 +811,10 @@ fn assemble(
         Some(*out_index[v].get_or_insert_with(|| {
             let mut sites = labels.of_vertex(v).to_vec();
             sites.sort();
-            out.vertices.push(Vertex { at, sites });
+            out.vertices.push(Vertex {
+                at,
+                sites: sites.into(),
+            });
             out.vertices.len() - 1
         }))
     };
@@ -892,7 +895,7 @@ fn assemble(
                 sites,
                 from,
                 to,
-                points: piece,
+                points: piece.into(),
                 bisector,
             });
         }

@@ -6,7 +6,7 @@ use super::predicates::{circumcenter, incircle};
 use super::PointDiagram;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
-use crate::par::{filter_map_range, map_range};
+use crate::par::{filter_map_range, map_range, unzip_range};
 
 /// Union–find with path halving.
 fn find(parent: &mut [u32], mut v: u32) -> u32 {
@@ -36,33 +36,39 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
     let pos = |s: u32| d.pts[s as usize];
     let real = |v: usize| v != GHOST as usize && g.gens[v].iter().all(|&s| s < n);
 
-    // Circumcentres (scaled coordinates); the vertex at infinity gets a dummy.
-    let mut nodes: Vec<Node> = map_range(nv, 1 << 12, |v| {
-        let [a, b, c] = g.gens[v];
+    // Circumcentres (scaled coordinates; the vertex at infinity gets a dummy) and, in
+    // the same pass, the zero-length edges: bit k of `zero[v]` marks half-edge 3v + k as
+    // joining `v` to a vertex of exactly cocircular generators. A vertex with a far
+    // generator lies outside the domain, so only real ones matter.
+    let (mut nodes, zero): (Vec<Node>, Vec<u8>) = unzip_range(nv, 1 << 12, |v| {
+        let [a, b, c] = g.gens[v].map(pos);
         let at = if v == GHOST as usize {
             Point::default()
         } else {
-            circumcenter(pos(a), pos(b), pos(c))
+            circumcenter(a, b, c)
         };
-        Node {
+        let mut zero = 0;
+        if real(v) {
+            for k in 0..3 {
+                let h = 3 * v + k;
+                let t = g.twin[h] as usize;
+                if h < t && real(t / 3) {
+                    let x = pos(g.gens[t / 3][(t % 3 + 2) % 3]);
+                    zero |= u8::from(incircle(a, b, c, x) == 0.0) << k;
+                }
+            }
+        }
+        let node = Node {
             at,
             group: v as u32,
             out: u32::MAX,
-        }
+        };
+        (node, zero)
     });
-
-    // Merge vertices joined by zero-length edges: exactly cocircular generators. A
-    // vertex with a far generator lies outside the domain, so only real ones matter.
-    let cocircular = filter_map_range(g.twin.len(), 1 << 12, |h| {
-        let t = g.twin[h] as usize;
-        let (u, w) = (h / 3, t / 3);
-        if h > t || !real(u) || !real(w) {
-            return None;
-        }
-        let [a, b, c] = g.gens[u];
-        let x = g.gens[w][(t % 3 + 2) % 3];
-        (incircle(pos(a), pos(b), pos(c), pos(x)) == 0.0).then_some((u as u32, w as u32))
-    });
+    let cocircular: Vec<(u32, u32)> = (0..3 * nv)
+        .filter(|&h| zero[h / 3] >> (h % 3) & 1 != 0)
+        .map(|h| (h as u32 / 3, g.twin[h] / 3))
+        .collect();
     let merged = !cocircular.is_empty();
     let mut parent: Vec<u32> = Vec::new();
     if merged {
@@ -81,23 +87,22 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
     // numbered in vertex order.
     let inv = 1.0 / d.scale;
     let site = |s: u32| Generator::Site(d.input[s as usize] as usize);
-    let mut count = 0u32;
+    let mut outs: Vec<u32> = Vec::new();
     for v in 0..nv {
         let rep = if merged { parent[v] as usize } else { v };
         if rep == v && real(v) && d.domain.contains(nodes[v].at) {
-            nodes[v].out = count;
-            count += 1;
+            nodes[v].out = outs.len() as u32;
+            outs.push(v as u32);
         }
     }
-    let mut vertices = filter_map_range(nv, 1 << 12, |v| {
-        (nodes[v].out != u32::MAX).then(|| {
-            let mut ids = g.gens[v].map(|s| d.input[s as usize]);
-            ids.sort_unstable();
-            Vertex {
-                at: nodes[v].at * inv,
-                sites: ids.iter().map(|&i| Generator::Site(i as usize)).collect(),
-            }
-        })
+    let mut vertices = map_range(outs.len(), 1 << 12, |k| {
+        let v = outs[k] as usize;
+        let mut ids = g.gens[v].map(|s| d.input[s as usize]);
+        ids.sort_unstable();
+        Vertex {
+            at: nodes[v].at * inv,
+            sites: ids.map(|i| Generator::Site(i as usize)).into(),
+        }
     });
     if merged {
         for v in 0..nv {
@@ -119,21 +124,25 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
         }
     }
 
-    // Edges between real sites, between distinct groups, clipped to the domain.
-    let edges = filter_map_range(g.twin.len(), 1 << 12, |h| {
+    // Edges between real sites, between distinct groups, clipped to the domain: their
+    // half-edges first, so that the edges are written in place.
+    let kept = filter_map_range(g.twin.len(), 1 << 12, |h| {
         let h = h as u32;
-        if h > g.twin[h as usize] {
-            return None;
-        }
-        let ((start, end), (from, to)) = clip(d, &nodes, h)?;
+        let t = g.twin[h as usize];
+        (h < t && clip(d, &nodes, h, t).is_some()).then_some(h)
+    });
+    let edges = map_range(kept.len(), 1 << 12, |k| {
+        let h = kept[k];
+        let ((start, end), (from, to)) =
+            clip(d, &nodes, h, g.twin[h as usize]).expect("a kept edge");
         let (a, b) = (g.right(h), g.left(h));
-        Some(Edge {
+        Edge {
             sites: [site(b), site(a)],
             from,
             to,
-            points: vec![start * inv, end * inv],
+            points: [start * inv, end * inv].into(),
             bisector: Vec::new(),
-        })
+        }
     });
 
     let mut c = VoronoiComplex {
@@ -146,7 +155,7 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
         // The same segments as the edges, in the direction of each half-edge.
         let segment = |h: u32| {
             let t = g.twin[h as usize];
-            let ((p, q), _) = clip(d, &nodes, h.min(t))?;
+            let ((p, q), _) = clip(d, &nodes, h.min(t), h.max(t))?;
             Some(if h < t {
                 (p * inv, q * inv)
             } else {
@@ -174,7 +183,7 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
     (c, traced)
 }
 
-/// The edge of half-edge `h` (`h < twin(h)`, from `u = h / 3` to `w = twin(h) / 3`) as
+/// The edge of half-edge `h` (`h < t = twin(h)`, from `u = h / 3` to `w = t / 3`) as
 /// output: its segment clipped to the domain (scaled coordinates) and its end vertices'
 /// output indices, or `None` when it separates a far generator, joins two vertices of
 /// one group, or meets the domain in less than a segment.
@@ -184,14 +193,9 @@ fn clip(
     d: &PointDiagram,
     nodes: &[Node],
     h: u32,
+    t: u32,
 ) -> Option<((Point, Point), (Option<usize>, Option<usize>))> {
     let g = &d.graph;
-    let n = d.input.len() as u32;
-    let t = g.twin[h as usize];
-    let (a, b) = (g.right(h), g.left(h));
-    if a >= n || b >= n {
-        return None;
-    }
     let (nu, nw) = (nodes[h as usize / 3], nodes[t as usize / 3]);
     if nu.group == nw.group {
         return None;
@@ -201,7 +205,13 @@ fn clip(
         (nw.out != u32::MAX).then_some(nw.out as usize),
     );
     if from.is_some() && to.is_some() {
+        // Both ends are output, hence real: so are the edge's generators.
         return Some(((nu.at, nw.at), (from, to)));
+    }
+    let n = d.input.len() as u32;
+    let (a, b) = (g.right(h), g.left(h));
+    if a >= n || b >= n {
+        return None;
     }
     // Clip on the bisector m + s·dir, dir = (a − b)⊥ (from u to w, b on the left):
     // parameters stay accurate when a vertex is very far away.

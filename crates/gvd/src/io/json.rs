@@ -94,21 +94,21 @@ fn write_list<T: serde::Serialize + Sync, W: std::io::Write>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::complex::{Edge, Generator, Vertex};
+    use crate::complex::{smallvec, Edge, Generator, Vertex};
 
     #[test]
     fn round_trip_and_errors() {
         let d = VoronoiComplex {
             vertices: vec![Vertex {
                 at: Point::new(0.1, -0.2),
-                sites: vec![Generator::Site(0), Generator::Site(3), Generator::Site(7)],
+                sites: smallvec![Generator::Site(0), Generator::Site(3), Generator::Site(7)],
             }],
             edges: vec![Edge {
                 sites: [Generator::Site(0), Generator::Site(3)],
                 from: Some(0),
                 bisector: Vec::new(),
                 to: None,
-                points: vec![Point::new(0.1, -0.2), Point::new(1.0 / 3.0, 2.0)],
+                points: smallvec![Point::new(0.1, -0.2), Point::new(1.0 / 3.0, 2.0)],
             }],
             ..Default::default()
         };
@@ -143,7 +143,7 @@ mod tests {
             let p = Point::new(i as f64 / 7.0, -1.0 / (i as f64 + 1.0));
             d.vertices.push(Vertex {
                 at: p,
-                sites: vec![Generator::Site(i), Generator::Site(i + 1)],
+                sites: smallvec![Generator::Site(i), Generator::Site(i + 1)],
             });
             if i % 3 == 0 {
                 d.edges.push(Edge {
@@ -151,13 +151,13 @@ mod tests {
                     from: Some(i),
                     bisector: Vec::new(),
                     to: None,
-                    points: vec![p, Point::new(0.5, 1e-300)],
+                    points: smallvec![p, Point::new(0.5, 1e-300)],
                 });
             }
         }
         d.cells.push(crate::complex::Cell {
             site: 3,
-            rings: vec![vec![
+            rings: smallvec![vec![
                 Point::new(0.0, 0.0),
                 Point::new(1.0, 0.0),
                 Point::new(0.0, 1.0),

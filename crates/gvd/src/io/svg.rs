@@ -496,7 +496,7 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::complex::{Cell, Edge, Generator, Vertex};
+    use crate::complex::{smallvec, Cell, Edge, Generator, Vertex};
     use crate::scene::{Metric, Mode, Site};
 
     /// Every opened tag is closed in order (a simple well-formedness check).
@@ -561,7 +561,7 @@ mod tests {
         let diagram = VoronoiComplex {
             vertices: vec![Vertex {
                 at: p(0.0, 0.0),
-                sites: vec![g(0), g(1), g(2)],
+                sites: smallvec![g(0), g(1), g(2)],
             }],
             edges: vec![
                 Edge {
@@ -569,19 +569,19 @@ mod tests {
                     from: Some(0),
                     bisector: Vec::new(),
                     to: None,
-                    points: vec![p(0.0, 0.0), p(0.1, -0.5), p(0.0, -1.0)],
+                    points: smallvec![p(0.0, 0.0), p(0.1, -0.5), p(0.0, -1.0)],
                 },
                 Edge {
                     sites: [g(0), g(2)],
                     from: Some(0),
                     bisector: Vec::new(),
                     to: None,
-                    points: vec![p(0.0, 0.0), p(-2.0, 1.0)],
+                    points: smallvec![p(0.0, 0.0), p(-2.0, 1.0)],
                 },
             ],
             cells: vec![Cell {
                 site: 0,
-                rings: vec![vec![p(-2.0, -1.0), p(0.0, 0.0), p(-2.0, 1.0)]],
+                rings: smallvec![vec![p(-2.0, -1.0), p(0.0, 0.0), p(-2.0, 1.0)]],
             }],
             ..Default::default()
         };

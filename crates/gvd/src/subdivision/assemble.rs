@@ -210,7 +210,7 @@ fn build_complex(
             ],
             from: ends[0],
             to: ends[1],
-            points,
+            points: points.into(),
             bisector: Vec::new(),
         });
     }

@@ -1,5 +1,5 @@
 use super::*;
-use crate::complex::{Edge, Vertex};
+use crate::complex::{smallvec, Edge, Vertex};
 use crate::num::poly::Poly;
 use crate::scene::{Equation, Metric, Site, SiteKind};
 
@@ -36,7 +36,7 @@ fn edge(a: usize, b: usize, from: Option<usize>, to: Option<usize>, pts: &[Point
         from,
         bisector: Vec::new(),
         to,
-        points: pts.to_vec(),
+        points: pts.into(),
     }
 }
 
@@ -244,7 +244,7 @@ fn swapped_labels_fail_soundness() {
 fn bent_edge_fails_beyond_tolerance_only() {
     let bent = |by: f64| {
         let (s, mut d) = two_points();
-        d.edges[0].points = vec![
+        d.edges[0].points = smallvec![
             Point::new(0.0, -1.0),
             Point::new(by, 0.0),
             Point::new(0.0, 1.0),

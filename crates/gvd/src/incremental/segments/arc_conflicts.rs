@@ -30,11 +30,6 @@ impl ArcSpec {
         let rel = (a - self.start).rem_euclid(std::f64::consts::TAU);
         rel <= self.span + slack || rel >= std::f64::consts::TAU - slack
     }
-
-    fn bbox_overlaps(&self, lo: Point, hi: Point, pad: f64) -> bool {
-        let r = self.r + pad;
-        !(hi.x < self.c.x - r || lo.x > self.c.x + r || hi.y < self.c.y - r || lo.y > self.c.y + r)
-    }
 }
 
 /// What meets an arc.
@@ -48,7 +43,9 @@ pub(crate) enum ArcConflict {
     Point(usize, usize),
 }
 
-/// The first conflict of an arc with a segment, another arc or a lonely point.
+/// The first conflict of an arc with a segment, another arc or a lonely point: in the
+/// order of the arcs, then segments before arcs before points, each in their order.
+/// Only pairs whose boxes meet are tested, found through a grid over the arcs.
 pub(crate) fn find_arc_conflict(
     points: &[Point],
     segments: &[[u32; 2]],
@@ -56,50 +53,149 @@ pub(crate) fn find_arc_conflict(
     lonely: &[u32],
     scale: f64,
 ) -> Option<ArcConflict> {
+    if arcs.is_empty() {
+        return None;
+    }
     let tol = 1e-12 * scale;
-    for (i, arc) in arcs.iter().enumerate() {
-        for (j, &[a, b]) in segments.iter().enumerate() {
-            let (pa, pb) = (points[a as usize], points[b as usize]);
-            let (lo, hi) = (
-                Point::new(pa.x.min(pb.x), pa.y.min(pb.y)),
-                Point::new(pa.x.max(pb.x), pa.y.max(pb.y)),
-            );
-            if !arc.bbox_overlaps(lo, hi, tol) {
-                continue;
-            }
+    let grid = ArcGrid::new(arcs, tol);
+    // The least conflict by (arc, kind: segment 0, arc 1, point 2, index).
+    let mut first: Option<((usize, u8, usize), ArcConflict)> = None;
+    let mut found = |key: (usize, u8, usize), c: ArcConflict| {
+        if first.is_none_or(|(k, _)| key < k) {
+            first = Some((key, c));
+        }
+    };
+    for (j, &[a, b]) in segments.iter().enumerate() {
+        let (pa, pb) = (points[a as usize], points[b as usize]);
+        let (lo, hi) = (
+            Point::new(pa.x.min(pb.x), pa.y.min(pb.y)),
+            Point::new(pa.x.max(pb.x), pa.y.max(pb.y)),
+        );
+        grid.near(lo, hi, |i| {
+            let arc = &arcs[i];
             let shared = |q: Point| shared_end(points, arc, &[a, b], q, tol);
             if line_circle(pa, pb, arc.c, arc.r, tol)
                 .into_iter()
                 .any(|q| arc.spans(q, tol / arc.r) && !shared(q))
             {
-                return Some(ArcConflict::Segment(i, j));
+                found((i, 0, j), ArcConflict::Segment(i, j));
             }
-        }
-        for (j, other) in arcs.iter().enumerate().skip(i + 1) {
-            let meets = circle_circle(arc, other, tol);
-            let Some(qs) = meets else {
+        });
+    }
+    for (j, other) in arcs.iter().enumerate() {
+        let (lo, hi) = grid.boxes[j];
+        grid.near(lo, hi, |i| {
+            if i >= j {
+                return;
+            }
+            let arc = &arcs[i];
+            let meets = match circle_circle(arc, other, tol) {
                 // One circle: they overlap iff the spans share more than end points.
-                if spans_overlap(arc, other) {
-                    return Some(ArcConflict::Arc(i, j));
-                }
-                continue;
+                None => spans_overlap(arc, other),
+                Some(qs) => qs.into_iter().any(|q| {
+                    arc.spans(q, tol / arc.r)
+                        && other.spans(q, tol / other.r)
+                        && !shared_end(points, arc, &other.ends, q, tol)
+                }),
             };
-            let shared = |q: Point| shared_end(points, arc, &other.ends, q, tol);
-            if qs
-                .into_iter()
-                .any(|q| arc.spans(q, tol / arc.r) && other.spans(q, tol / other.r) && !shared(q))
-            {
-                return Some(ArcConflict::Arc(i, j));
+            if meets {
+                found((i, 1, j), ArcConflict::Arc(i, j));
+            }
+        });
+    }
+    for (k, &p) in lonely.iter().enumerate() {
+        let q = points[p as usize];
+        grid.near(q, q, |i| {
+            let arc = &arcs[i];
+            if (q.dist(arc.c) - arc.r).abs() <= tol && arc.spans(q, -tol / arc.r) {
+                found((i, 2, k), ArcConflict::Point(i, p as usize));
+            }
+        });
+    }
+    first.map(|(_, c)| c)
+}
+
+/// A uniform grid over the arcs' boxes (their circles' boxes, padded by the
+/// tolerance), with cells about the size of an arc's box.
+struct ArcGrid {
+    boxes: Vec<(Point, Point)>,
+    lo: Point,
+    side: f64,
+    nx: usize,
+    ny: usize,
+    /// The arcs whose boxes meet each cell, row by row.
+    cells: Vec<Vec<u32>>,
+}
+
+impl ArcGrid {
+    fn new(arcs: &[ArcSpec], pad: f64) -> ArcGrid {
+        let boxes: Vec<(Point, Point)> = arcs
+            .iter()
+            .map(|a| {
+                let r = Point::new(a.r + pad, a.r + pad);
+                (a.c - r, a.c + r)
+            })
+            .collect();
+        let (mut lo, mut hi) = boxes[0];
+        let mut size = 0.0;
+        for &(l, h) in &boxes {
+            lo = Point::new(lo.x.min(l.x), lo.y.min(l.y));
+            hi = Point::new(hi.x.max(h.x), hi.y.max(h.y));
+            size += h.x - l.x;
+        }
+        let n = arcs.len() as f64;
+        let ext = (hi.x - lo.x).max(hi.y - lo.y).max(f64::MIN_POSITIVE);
+        let side = (size / n).max(ext / (2.0 * n).sqrt()).max(ext / 4096.0);
+        let nx = ((hi.x - lo.x) / side).floor() as usize + 1;
+        let ny = ((hi.y - lo.y) / side).floor() as usize + 1;
+        let mut grid = ArcGrid {
+            boxes,
+            lo,
+            side,
+            nx,
+            ny,
+            cells: vec![Vec::new(); nx * ny],
+        };
+        for k in 0..arcs.len() {
+            let ((x0, y0), (x1, y1)) = grid.span(grid.boxes[k].0, grid.boxes[k].1);
+            for cy in y0..=y1 {
+                for cx in x0..=x1 {
+                    grid.cells[cy * grid.nx + cx].push(k as u32);
+                }
             }
         }
-        for &p in lonely {
-            let q = points[p as usize];
-            if (q.dist(arc.c) - arc.r).abs() <= tol && arc.spans(q, -tol / arc.r) {
-                return Some(ArcConflict::Point(i, p as usize));
+        grid
+    }
+
+    fn cell(&self, p: Point) -> (usize, usize) {
+        let at = |v: f64, lo: f64, n: usize| {
+            (((v - lo) / self.side).floor().max(0.0) as usize).min(n - 1)
+        };
+        (at(p.x, self.lo.x, self.nx), at(p.y, self.lo.y, self.ny))
+    }
+
+    /// The range of cells that the box `[lo, hi]` meets (clamped to the grid).
+    fn span(&self, lo: Point, hi: Point) -> ((usize, usize), (usize, usize)) {
+        (self.cell(lo), self.cell(hi))
+    }
+
+    /// Calls `f` once with each arc whose box meets the box `[lo, hi]`: in the cell of
+    /// the least corner of the two boxes' overlap.
+    fn near(&self, lo: Point, hi: Point, mut f: impl FnMut(usize)) {
+        let ((x0, y0), (x1, y1)) = self.span(lo, hi);
+        for cy in y0..=y1 {
+            for cx in x0..=x1 {
+                for &k in &self.cells[cy * self.nx + cx] {
+                    let (a, b) = self.boxes[k as usize];
+                    let corner = Point::new(lo.x.max(a.x), lo.y.max(a.y));
+                    let overlap = corner.x <= hi.x.min(b.x) && corner.y <= hi.y.min(b.y);
+                    if overlap && self.cell(corner) == (cx, cy) {
+                        f(k as usize);
+                    }
+                }
             }
         }
     }
-    None
 }
 
 /// Whether `q` is an end point of `arc` that is also one of `other_ends`.
@@ -207,5 +303,45 @@ mod tests {
             find_arc_conflict(&points, &[], &[upper, shifted], &[], 2.0),
             Some(ArcConflict::Arc(0, 1))
         );
+    }
+
+    /// On a lattice of 400 half circles, the grid finds the crossings far apart and
+    /// reports the least one (arc order, then segments before arcs before points).
+    #[test]
+    fn lattice_reports_the_first_conflict() {
+        let half = std::f64::consts::PI;
+        let mut points = Vec::new();
+        let arcs: Vec<ArcSpec> = (0..400)
+            .map(|k| {
+                let c = ((k % 20) as f64, (k / 20) as f64);
+                let mut a = arc(c, 0.3, 0.0, half, [0, 0]);
+                a.ends = [0, 1].map(|e| {
+                    points.push(a.end_point(e));
+                    points.len() as u32 - 1
+                });
+                a
+            })
+            .collect();
+        // Vertical segments through the tops of arcs 300 and 57, and a point on arc 120.
+        let top = |k: usize| Point::new((k % 20) as f64, (k / 20) as f64 + 0.3);
+        for k in [300, 57] {
+            points.extend([top(k) - Point::new(0.0, 0.1), top(k) + Point::new(0.0, 0.1)]);
+        }
+        let n = points.len() as u32;
+        let segments = [[n - 4, n - 3], [n - 2, n - 1]];
+        points.push(top(120));
+        let found = |segs: &[[u32; 2]], lonely: &[u32]| {
+            find_arc_conflict(&points, segs, &arcs, lonely, 20.0)
+        };
+        assert_eq!(found(&segments, &[n]), Some(ArcConflict::Segment(57, 1)));
+        assert_eq!(
+            found(&segments[..1], &[n]),
+            Some(ArcConflict::Point(120, n as usize))
+        );
+        assert_eq!(
+            found(&segments[..1], &[]),
+            Some(ArcConflict::Segment(300, 0))
+        );
+        assert_eq!(found(&[], &[]), None);
     }
 }

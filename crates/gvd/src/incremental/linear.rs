@@ -31,7 +31,6 @@ use crate::par::{filter_map_range, map_range};
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
 use rustc_hash::FxHashMap;
-use std::collections::HashMap;
 
 /// Whether every site is a Euclidean point, a segment, an arc short of a full circle, a
 /// polyline or a polygon.
@@ -100,7 +99,23 @@ impl Generators {
             lonely: Vec::new(),
             rings: Vec::new(),
         };
+        // Room for every point of every site (shared ones are counted once each).
+        let most: usize = scene
+            .sites
+            .iter()
+            .map(|s| match &s.kind {
+                SiteKind::Polyline { points } => points.len(),
+                SiteKind::Polygon { rings } => rings.iter().map(Vec::len).sum(),
+                SiteKind::Point { .. } => 1,
+                _ => 2,
+            })
+            .sum();
+        g.points.reserve(most);
+        g.point_owner.reserve(most);
+        g.segments.reserve(most);
+        g.segment_owner.reserve(most);
         let mut index: FxHashMap<(u64, u64), u32> = FxHashMap::default();
+        index.reserve(most);
         let mut point = |g: &mut Generators, p: Point, owner: (usize, Option<usize>)| {
             // −0.0 and 0.0 are the same point.
             let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
@@ -118,12 +133,12 @@ impl Generators {
                 }
             }
         };
+        let mut ids: Vec<u32> = Vec::new();
         let mut chain = |g: &mut Generators, site: usize, corner0: usize, pts: &[Point], closed| {
-            let ids: Vec<u32> = pts
-                .iter()
-                .enumerate()
-                .map(|(k, &p)| point(g, p, (site, Some(corner0 + k))))
-                .collect();
+            ids.clear();
+            for (k, &p) in pts.iter().enumerate() {
+                ids.push(point(g, p, (site, Some(corner0 + k))));
+            }
             let n = ids.len();
             let edges = if closed { n } else { n - 1 };
             for k in 0..edges {
@@ -173,7 +188,10 @@ impl Generators {
         // segment's or another arc's end by an ulp: within 1e-12 of the domain they are
         // that point. A point shared by several sites is named by the first of them in
         // the scene.
-        let mut snap = Snap::new(1e-12 * scene.domain.longest_side(), &g.points);
+        let mut snap = Snap::new(1e-12 * scene.domain.longest_side());
+        if !arc_sites.is_empty() {
+            snap.insert_all(&g.points);
+        }
         for (i, mut arc) in arc_sites {
             arc.ends = [0, 1].map(|k| {
                 let end = arc.end_point(k);
@@ -393,19 +411,21 @@ fn owner_label((site, corner): (usize, Option<usize>), mode: Mode) -> Generator 
 /// Points within `tol` of each other, by a hash grid of cell `tol`.
 struct Snap {
     tol: f64,
-    cells: HashMap<(i64, i64), Vec<u32>>,
+    cells: FxHashMap<(i64, i64), Vec<u32>>,
 }
 
 impl Snap {
-    fn new(tol: f64, points: &[Point]) -> Snap {
-        let mut snap = Snap {
+    fn new(tol: f64) -> Snap {
+        Snap {
             tol,
-            cells: HashMap::new(),
-        };
-        for (id, &p) in points.iter().enumerate() {
-            snap.insert(p, id as u32);
+            cells: FxHashMap::default(),
         }
-        snap
+    }
+
+    fn insert_all(&mut self, points: &[Point]) {
+        for (id, &p) in points.iter().enumerate() {
+            self.insert(p, id as u32);
+        }
     }
 
     fn cell(&self, p: Point) -> (i64, i64) {

@@ -105,17 +105,36 @@ pub(crate) fn find_conflict(
         let cy = (((p.y - lo.y) / side).floor().max(0.0) as usize).min(ny - 1);
         (cx, cy)
     };
-    let mut cells: Vec<Vec<u32>> = vec![Vec::new(); nx * ny];
-    for (k, &[a, b]) in segments.iter().enumerate() {
-        let (pa, pb) = (points[a as usize], points[b as usize]);
-        let (c0, c1) = (cell(pa), cell(pb));
-        for cx in c0.0.min(c1.0)..=c0.0.max(c1.0) {
-            for cy in c0.1.min(c1.1)..=c0.1.max(c1.1) {
-                cells[cy * nx + cx].push(k as u32);
+    // Calls `f` with each cell that segment `k`'s box meets.
+    let for_cells = |k: usize, f: &mut dyn FnMut(usize)| {
+        let [a, b] = segments[k];
+        let (c0, c1) = (cell(points[a as usize]), cell(points[b as usize]));
+        for cy in c0.1.min(c1.1)..=c0.1.max(c1.1) {
+            for cx in c0.0.min(c1.0)..=c0.0.max(c1.0) {
+                f(cy * nx + cx);
             }
         }
+    };
+    // The segments over each cell, grouped by cell in one list (a counting sort):
+    // cell `c`'s are `list[start[c]..start[c + 1]]`.
+    let mut start = vec![0usize; nx * ny + 1];
+    for k in 0..segments.len() {
+        for_cells(k, &mut |c| start[c + 1] += 1);
     }
-    for list in &cells {
+    for c in 0..nx * ny {
+        start[c + 1] += start[c];
+    }
+    let mut fill = start.clone();
+    let mut list = vec![0u32; start[nx * ny]];
+    for k in 0..segments.len() {
+        for_cells(k, &mut |c| {
+            list[fill[c]] = k as u32;
+            fill[c] += 1;
+        });
+    }
+    let cells = |c: usize| &list[start[c]..start[c + 1]];
+    for c in 0..nx * ny {
+        let list = cells(c);
         for (x, &i) in list.iter().enumerate() {
             for &j in &list[x + 1..] {
                 if let Some(c) = segment_pair(points, segments, i as usize, j as usize) {
@@ -130,7 +149,7 @@ pub(crate) fn find_conflict(
             continue;
         }
         let (cx, cy) = cell(q);
-        for &i in &cells[cy * nx + cx] {
+        for &i in cells(cy * nx + cx) {
             let [a, b] = segments[i as usize];
             let (pa, pb) = (points[a as usize], points[b as usize]);
             if p != a && p != b && orient(pa, pb, q) == 0.0 && strictly_between(pa, pb, q) {

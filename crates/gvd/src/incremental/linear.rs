@@ -84,6 +84,9 @@ struct Generators {
     lonely: Vec<u32>,
     /// Closed rings of polygon sites (for insides).
     rings: Vec<Vec<Point>>,
+    /// The site of `point_owner` and of `segment_owner`, compactly.
+    point_site: Vec<u32>,
+    segment_site: Vec<u32>,
 }
 
 impl Generators {
@@ -98,6 +101,8 @@ impl Generators {
             arc_owner: Vec::new(),
             lonely: Vec::new(),
             rings: Vec::new(),
+            point_site: Vec::new(),
+            segment_site: Vec::new(),
         };
         // Room for every point of every site (shared ones are counted once each).
         let most: usize = scene
@@ -219,6 +224,8 @@ impl Generators {
                 g.lonely.push(id);
             }
         }
+        g.point_site = g.point_owner.iter().map(|o| o.0 as u32).collect();
+        g.segment_site = g.segment_owner.iter().map(|o| o.0 as u32).collect();
         g
     }
 
@@ -360,8 +367,20 @@ impl Generators {
     /// different labels (of different sites in `voronoi` mode), and it is not a zone
     /// boundary between a segment or an arc and one of its ends.
     fn shown(&self, a: Gen, b: Gen, mode: Mode) -> bool {
-        let (la, lb) = (self.label(a, mode), self.label(b, mode));
-        la != lb && !(mode == Mode::Voronoi && la.site() == lb.site()) && !self.is_separator(a, b)
+        let apart = match mode {
+            Mode::Voronoi => self.site(a) != self.site(b),
+            _ => self.label(a, mode) != self.label(b, mode),
+        };
+        apart && !self.is_separator(a, b)
+    }
+
+    /// The site that names generator `g` (a compact table: this is asked per edge).
+    fn site(&self, g: Gen) -> u32 {
+        match g {
+            Gen::Point(p) => self.point_site[p as usize],
+            Gen::Segment(s) => self.segment_site[s as usize],
+            Gen::Arc(a) => self.arc_owner[a as usize] as u32,
+        }
     }
 
     /// Whether `a` and `b` are a segment and one of its own ends.

@@ -63,3 +63,19 @@ pub(crate) fn filter_map_range<T: Send>(
         (0..n).filter_map(f).collect()
     }
 }
+
+/// `(a(), b())`, the two run side by side on rayon's pool (one after the other
+/// without the `parallel` feature).
+pub(crate) fn join<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    #[cfg(feature = "parallel")]
+    {
+        rayon::join(a, b)
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        (a(), b())
+    }
+}

@@ -27,7 +27,7 @@ use super::segments::{
 };
 use crate::complex::{BisectorPiece, Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
-use crate::par::{filter_map_range, map_range};
+use crate::par::{filter_map_range, join, map_range};
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
 use rustc_hash::FxHashMap;
@@ -697,11 +697,11 @@ impl Incident {
 /// the links they range over.
 fn chain_edges(
     kept: &[Kept],
+    incident: &Incident,
     labels: &Labels,
     on_site: impl Fn(usize) -> bool + Sync,
 ) -> (Vec<Chain>, Vec<Link>) {
     let nv = labels.len.len();
-    let incident = Incident::of(kept, nv);
     let node = map_range(nv, 1 << 12, |v| {
         labels.named[v] >= 3 || incident.around(v).len() != 2 || on_site(v)
     });
@@ -791,24 +791,31 @@ fn assemble(
         parent[a.max(b)] = a.min(b);
     }
     let root: Vec<u32> = (0..nv).map(|v| find(&mut parent, v) as u32).collect();
-    let labels = Labels::of(g, mode, &raw_vertices, &root);
-    // Kept edges: shown, of positive length; a merged vertex is at its root.
-    let kept: Vec<Kept> = filter_map_range(raw_edges.len(), 1 << 12, |k| {
-        let e = &raw_edges[k];
-        (!e.zero && g.shown(e.gens[0], e.gens[1], mode)).then(|| Kept {
-            gens: e.gens,
-            ends: e.ends.map(|v| root[v]),
-            half: e.half,
-            on_normal: e.on_normal,
-        })
-    });
+    // The labels (sequential), side by side with the kept edges (shown, of positive
+    // length, a merged vertex at its root) and the edges around each vertex.
+    let (labels, (kept, incident)) = join(
+        || Labels::of(g, mode, &raw_vertices, &root),
+        || {
+            let kept: Vec<Kept> = filter_map_range(raw_edges.len(), 1 << 12, |k| {
+                let e = &raw_edges[k];
+                (!e.zero && g.shown(e.gens[0], e.gens[1], mode)).then(|| Kept {
+                    gens: e.gens,
+                    ends: e.ends.map(|v| root[v]),
+                    half: e.half,
+                    on_normal: e.on_normal,
+                })
+            });
+            let incident = Incident::of(&kept, nv);
+            (kept, incident)
+        },
+    );
     drop(raw_edges);
     // Insides of polygons, clipping, output indices.
     let domain = scene.domain;
     // Where an edge ends on a site (a corner), the two distance fields are not
     // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
     let hair = 1e-9 * domain.longest_side();
-    let (chains, links) = chain_edges(&kept, &labels, |v| raw_vertices[v].t <= hair);
+    let (chains, links) = chain_edges(&kept, &incident, &labels, |v| raw_vertices[v].t <= hair);
     // A chain's polyline: its edges' polylines in order (each projected onto its
     // tangent joint's normal if it lies on one), from their ends' merged vertices, with
     // the stretches they make.

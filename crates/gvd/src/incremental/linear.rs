@@ -25,7 +25,9 @@ use super::rescale;
 use super::segments::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, RawEdge, SegmentDiagram,
 };
-use crate::complex::{BisectorPiece, Edge, FeatureKind, Generator, Vertex, VoronoiComplex};
+use crate::complex::{
+    BisectorPiece, Edge, FeatureKind, Generator, SmallVec, Vertex, VoronoiComplex,
+};
 use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, join, map_range};
 use crate::scene::{Metric, Mode, Scene, SiteKind};
@@ -820,7 +822,9 @@ fn assemble(
     // tangent joint's normal if it lies on one), from their ends' merged vertices, with
     // the stretches they make.
     let draw = |chain: &Chain| {
-        let (mut points, mut stretches, mut edge) = (Vec::new(), Vec::new(), Vec::new());
+        // Inline for a straight edge: no heap allocation.
+        let mut points: SmallVec<[Point; 2]> = SmallVec::new();
+        let (mut stretches, mut edge) = (Vec::new(), Vec::new());
         for &(k, forward) in &links[chain.links.clone()] {
             let e = &kept[k];
             edge.clear();
@@ -848,23 +852,19 @@ fn assemble(
         (points, stretches)
     };
     let mut out = VoronoiComplex::default();
+    // Output vertices are numbered in the order the edges first meet them; `shown`
+    // lists their raw vertices in that order.
     let mut out_index: Vec<Option<usize>> = vec![None; nv];
-    let mut vertex_out = |v: usize, out: &mut VoronoiComplex| -> Option<usize> {
-        let at = raw_vertices[v].at;
-        if !domain.contains(at) {
-            return None;
-        }
-        Some(*out_index[v].get_or_insert_with(|| {
-            let mut sites = labels.of_vertex(v).to_vec();
-            sites.sort();
-            out.vertices.push(Vertex {
-                at,
-                sites: sites.into(),
-            });
-            out.vertices.len() - 1
-        }))
+    let mut shown: Vec<usize> = Vec::new();
+    let mut vertex_out = |v: usize| -> Option<usize> {
+        domain.contains(raw_vertices[v].at).then(|| {
+            *out_index[v].get_or_insert_with(|| {
+                shown.push(v);
+                shown.len() - 1
+            })
+        })
     };
-    let pull = |points: &mut Vec<Point>, at_start: bool| {
+    let pull = |points: &mut [Point], at_start: bool| {
         let n = points.len();
         let (end, next) = if at_start { (0, 1) } else { (n - 1, n - 2) };
         let (p, q) = (points[end], points[next]);
@@ -894,7 +894,10 @@ fn assemble(
             let pieces = if whole {
                 vec![(points, false, false, 0)]
             } else {
-                clip_polyline(&points, &domain)
+                let pieces = clip_polyline(&points, &domain).into_iter();
+                pieces
+                    .map(|(p, s, e, f)| (SmallVec::from_vec(p), s, e, f))
+                    .collect()
             };
             let pieces = pieces
                 .into_iter()
@@ -911,6 +914,7 @@ fn assemble(
         })
     };
     let clipped = map_range(chains.len(), 1 << 10, clip);
+    out.edges.reserve(clipped.len());
     for (mut pieces, from, to, sites) in clipped.into_iter().flatten() {
         let closed_loop = from.is_none();
         // A closed loop cut by the domain whose first point is inside: its last piece
@@ -930,22 +934,31 @@ fn assemble(
             let from = if start_cut || closed_loop {
                 None
             } else {
-                from.and_then(|v| vertex_out(v, &mut out))
+                from.and_then(&mut vertex_out)
             };
             let to = if end_cut || closed_loop {
                 None
             } else {
-                to.and_then(|v| vertex_out(v, &mut out))
+                to.and_then(&mut vertex_out)
             };
             out.edges.push(Edge {
                 sites,
                 from,
                 to,
-                points: piece.into(),
+                points: piece,
                 bisector,
             });
         }
     }
+    out.vertices = map_range(shown.len(), 1 << 12, |k| {
+        let v = shown[k];
+        let mut sites: SmallVec<[Generator; 3]> = labels.of_vertex(v).iter().copied().collect();
+        sites.sort();
+        Vertex {
+            at: raw_vertices[v].at,
+            sites,
+        }
+    });
     Ok(out)
 }
 

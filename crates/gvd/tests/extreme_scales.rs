@@ -72,3 +72,28 @@ fn far_scales_compute_and_verify() {
         }
     }
 }
+
+/// A vertex moved off its place at scale 1e300 and 1e-300: `gvd verify` fails the
+/// diagram and names the vertex where it is, in the scene's own coordinates.
+#[test]
+fn far_scale_problems_are_located_in_scene_coordinates() {
+    let options = Options {
+        engine: Engine::Incremental,
+        ..Default::default()
+    };
+    let v = scene_value("segments-0200.json");
+    for f in [1e300, 1e-300] {
+        let s = scaled(&v, f);
+        let mut d = gvd::compute(&s, &options).unwrap();
+        let (x, y) = (0.31234 * f, 0.61234 * f);
+        d.vertices[0].at = gvd::geom::Point::new(x, y);
+        let report = verify(&s, &d, &VerifyOptions::default()).unwrap();
+        assert!(!report.passed, "scale {f:e}");
+        let place = format!("({x:.5e}, {y:.5e})");
+        assert!(
+            report.problems.iter().any(|p| p.contains(&place)),
+            "scale {f:e}: {place} not in {:#?}",
+            report.problems
+        );
+    }
+}

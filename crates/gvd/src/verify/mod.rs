@@ -135,13 +135,24 @@ pub fn verify(
         if let Some(s) = rescale::factor(scene) {
             let mut scaled = diagram.clone();
             rescale::unscale(&mut scaled, 1.0 / s);
-            let mut report = verify(&rescale::scene(scene, s), &scaled, opts)?;
+            let mut report = check(&rescale::scene(scene, s), &scaled, opts, 1.0 / s)?;
             report.worst_edge_error /= s;
             return Ok(report);
         }
     }
+    check(scene, diagram, opts, 1.0)
+}
+
+/// [`verify`] of a scene at `1 / unit` times the caller's coordinates: messages give
+/// lengths and locations times `unit`, in the caller's.
+fn check(
+    scene: &Scene,
+    diagram: &VoronoiComplex,
+    opts: &VerifyOptions,
+    unit: f64,
+) -> Result<Report, Error> {
     let gens = Gens::new(scene)?;
-    let ck = Checker::new(scene, &gens, diagram, opts);
+    let ck = Checker::new(scene, &gens, diagram, opts, unit);
     Ok(ck.run())
 }
 
@@ -183,9 +194,17 @@ fn fmt_g3(x: f64) -> String {
     }
 }
 
-/// A point as `(x, y)` with 6 significant digits.
+/// A point as `(x, y)` with 6 digits after the point, or 6 significant digits in
+/// exponent form far from 1.
 fn at(p: Point) -> String {
-    format!("({:.6}, {:.6})", p.x, p.y)
+    let f = |v: f64| {
+        if v == 0.0 || (1e-3..1e9).contains(&v.abs()) {
+            format!("{v:.6}")
+        } else {
+            format!("{v:.5e}")
+        }
+    };
+    format!("({}, {})", f(p.x), f(p.y))
 }
 
 /// Objects bucketed by a point in a uniform grid of cells (indices clamped, so objects
@@ -284,6 +303,9 @@ struct Checker<'a> {
     tiny: f64,
     errors: Vec<String>,
     warnings: Vec<String>,
+    /// What lengths and locations are multiplied by in messages (1 unless the scene
+    /// was rescaled for the check).
+    unit: f64,
 }
 
 impl<'a> Checker<'a> {
@@ -292,8 +314,10 @@ impl<'a> Checker<'a> {
         gens: &'a Gens,
         diagram: &'a VoronoiComplex,
         opts: &'a VerifyOptions,
+        unit: f64,
     ) -> Self {
         let mut ck = Checker {
+            unit,
             scene,
             gens,
             fields: &gens.fields,
@@ -316,6 +340,11 @@ impl<'a> Checker<'a> {
     /// A label's generator, if the label is valid in the scene's mode.
     fn label(&self, g: &Generator) -> Result<usize, String> {
         self.gens.parse(g)
+    }
+
+    /// A location in messages, in the caller's coordinates.
+    fn at(&self, p: Point) -> String {
+        at(p * self.unit)
     }
 
     /// A generator's name in messages.
@@ -611,9 +640,9 @@ impl<'a> Checker<'a> {
                 ge.index,
                 self.name(ge.a),
                 self.name(ge.b),
-                fmt_g3(e),
+                fmt_g3(e * self.unit),
                 fmt_g3(e / self.scene.epsilon),
-                at(samples[i].0)
+                self.at(samples[i].0)
             ));
         }
         if bad.len() > MAX_LIST {
@@ -742,8 +771,8 @@ impl<'a> Checker<'a> {
                     .map(|&g| self.name(g))
                     .collect::<Vec<_>>()
                     .join(", "),
-                at(vs[k].at),
-                fmt_g3(e),
+                self.at(vs[k].at),
+                fmt_g3(e * self.unit),
                 fmt_g3(e / self.scene.epsilon)
             ));
         }
@@ -911,7 +940,7 @@ impl<'a> Checker<'a> {
                 "completeness: no edge between sites {} and {} near {} ({count} crossings uncovered)",
                 self.name(a),
                 self.name(b),
-                at(x)
+                self.at(x)
             ));
         }
         if miss.len() > MAX_LIST {
@@ -961,10 +990,10 @@ impl<'a> Checker<'a> {
                         if dv > self.tol {
                             errors.push(format!(
                                 "edge {k}: '{name}' end {} is {} ({} eps) from vertex {v} at {}",
-                                at(p),
-                                fmt_g3(dv),
+                                self.at(p),
+                                fmt_g3(dv * self.unit),
                                 fmt_g3(dv / self.scene.epsilon),
-                                at(d.vertices[v].at)
+                                self.at(d.vertices[v].at)
                             ));
                         }
                         if let (Some(g), Some(vg)) = (gens, &self.vgens[v]) {
@@ -993,13 +1022,13 @@ impl<'a> Checker<'a> {
                         if on_site {
                             warnings.push(format!(
                                 "edge {k}: null '{name}' end {} ends on a site, not on the domain boundary",
-                                at(p)
+                                self.at(p)
                             ));
                         } else {
                             errors.push(format!(
                                 "edge {k}: null '{name}' end {} is not on the domain boundary ({} away) and not a closed loop",
-                                at(p),
-                                fmt_g3(db)
+                                self.at(p),
+                                fmt_g3(db * self.unit)
                             ));
                         }
                     }

@@ -1,0 +1,454 @@
+//! From the segment engine's raw graph to the [`VoronoiComplex`] of the scene's mode
+//! (see the parent module's doc): labels, kept edges, chains, their polylines, insides
+//! and clipping.
+
+use super::Generators;
+use crate::complex::{Edge, Generator, SmallVec, Vertex, VoronoiComplex};
+use crate::geom::{Aabb, Point};
+use crate::incremental::joints;
+use crate::incremental::phases::Phases;
+use crate::incremental::segments::{Gen, RawEdge, RawVertex, SegmentDiagram};
+use crate::par::{filter_map_range, join, map_range};
+use crate::scene::{Mode, Scene};
+use crate::Error;
+
+/// An output edge before it is drawn: its kept edges in order (a range of the
+/// walk's links) and its end vertices (`None` for a closed loop). Its labels are its
+/// first edge's.
+struct Chain {
+    links: std::ops::Range<usize>,
+    from: Option<usize>,
+    to: Option<usize>,
+}
+
+/// A step of a chain: a kept edge, and whether it is walked from its `ends[0]`.
+type Link = (usize, bool);
+
+/// The part of a chain that one raw edge contributed: from the chain's segment `start`
+/// (between points `start` and `start + 1`) to the next stretch's, on the bisector of
+/// `gens`.
+#[derive(Clone, Copy)]
+pub(super) struct Stretch {
+    pub(super) start: usize,
+    pub(super) gens: [Gen; 2],
+}
+
+/// Union–find with path halving.
+fn find(parent: &mut [usize], mut v: usize) -> usize {
+    while parent[v] != v {
+        parent[v] = parent[parent[v]];
+        v = parent[v];
+    }
+    v
+}
+
+/// A raw edge kept for the output, its ends merged across zero-length edges.
+struct Kept {
+    gens: [Gen; 2],
+    ends: [u32; 2],
+    /// The graph's half-edge from `ends[0]` to `ends[1]`.
+    half: u32,
+    /// See [`RawEdge::on_normal`].
+    on_normal: Option<u32>,
+}
+
+/// The labels of the vertices merged across zero-length edges (at their roots in `root`;
+/// none for the others), in the order of the raw vertices and their generators, each
+/// once: first the generators' names, then the other owners of shared points.
+struct Labels {
+    /// Root `r`'s labels are `items[start[r]..start[r] + len[r]]`.
+    start: Vec<usize>,
+    len: Vec<usize>,
+    /// How many of them are names (the rest are other owners of shared points).
+    named: Vec<usize>,
+    items: Vec<Generator>,
+}
+
+impl Labels {
+    fn of(g: &Generators, mode: Mode, raw: &[RawVertex], root: &[u32]) -> Labels {
+        let nv = raw.len();
+        let root = |v: usize| root[v] as usize;
+        // Room for every generator of the vertices merged into each root.
+        let mut start = vec![0usize; nv + 1];
+        for (v, rv) in raw.iter().enumerate() {
+            start[root(v) + 1] += rv.gens.iter().map(|&x| g.label_count(x)).sum::<usize>();
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut labels = Labels {
+            items: vec![Generator::Site(0); start[nv]],
+            len: vec![0; nv],
+            named: vec![0; nv],
+            start,
+        };
+        let add = |labels: &mut Labels, r: usize, l: Generator| {
+            if !labels.of_vertex(r).contains(&l) {
+                labels.items[labels.start[r] + labels.len[r]] = l;
+                labels.len[r] += 1;
+            }
+        };
+        for (v, rv) in raw.iter().enumerate() {
+            for &gen in &rv.gens {
+                add(&mut labels, root(v), g.label(gen, mode));
+            }
+        }
+        labels.named.copy_from_slice(&labels.len);
+        for (v, rv) in raw.iter().enumerate() {
+            for &gen in &rv.gens {
+                if let Gen::Point(p) = gen {
+                    for l in g.also_labels(p, mode) {
+                        add(&mut labels, root(v), l);
+                    }
+                }
+            }
+        }
+        labels
+    }
+
+    fn of_vertex(&self, v: usize) -> &[Generator] {
+        &self.items[self.start[v]..self.start[v] + self.len[v]]
+    }
+}
+
+/// The kept edges around each vertex, in the order of the edges (an edge from a
+/// vertex to itself twice), as one flat list.
+struct Incident {
+    /// Vertex `v`'s edges are `edges[start[v]..start[v + 1]]`.
+    start: Vec<u32>,
+    edges: Vec<u32>,
+}
+
+impl Incident {
+    fn of(kept: &[Kept], nv: usize) -> Incident {
+        let mut start = vec![0u32; nv + 1];
+        for e in kept {
+            start[e.ends[0] as usize + 1] += 1;
+            start[e.ends[1] as usize + 1] += 1;
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut edges = vec![0u32; start[nv] as usize];
+        for (k, e) in kept.iter().enumerate() {
+            for v in e.ends.map(|v| v as usize) {
+                edges[fill[v] as usize] = k as u32;
+                fill[v] += 1;
+            }
+        }
+        Incident { start, edges }
+    }
+
+    fn around(&self, v: usize) -> &[u32] {
+        &self.edges[self.start[v] as usize..self.start[v + 1] as usize]
+    }
+}
+
+/// Chains the kept edges through the vertices that join two labels and two kept
+/// edges, away from the sites: one chain from every node (a vertex of three or more
+/// named labels, not two kept edges, or `on_site`, as a tangent joint on its normal)
+/// along each of its unused edges, then the closed loops left. Returns the chains and
+/// the links they range over.
+fn chain_edges(
+    kept: &[Kept],
+    incident: &Incident,
+    labels: &Labels,
+    on_site: impl Fn(usize) -> bool + Sync,
+) -> (Vec<Chain>, Vec<Link>) {
+    let nv = labels.len.len();
+    let node = map_range(nv, 1 << 12, |v| {
+        labels.named[v] >= 3 || incident.around(v).len() != 2 || on_site(v)
+    });
+    let mut used = vec![false; kept.len()];
+    let mut chains: Vec<Chain> = Vec::new();
+    let mut links: Vec<Link> = Vec::with_capacity(kept.len());
+    // Walks from vertex `from` along `start_edge` to a node or back to the start of a
+    // closed loop, recording the links; returns the last vertex.
+    let walk = |start_edge: usize, from: usize, used: &mut [bool], links: &mut Vec<Link>| {
+        let (mut e, mut v) = (start_edge, from);
+        loop {
+            used[e] = true;
+            let forward = kept[e].ends[0] as usize == v;
+            links.push((e, forward));
+            v = kept[e].ends[usize::from(forward)] as usize;
+            if node[v] {
+                return v;
+            }
+            match incident.around(v).iter().find(|&&k| !used[k as usize]) {
+                Some(&k) => e = k as usize,
+                None => return v, // closed loop
+            }
+        }
+    };
+    for v in (0..nv).filter(|&v| node[v]) {
+        for &k in incident.around(v) {
+            let k = k as usize;
+            if used[k] {
+                continue;
+            }
+            let start = links.len();
+            let end = walk(k, v, &mut used, &mut links);
+            chains.push(Chain {
+                links: start..links.len(),
+                from: Some(v),
+                to: Some(end),
+            });
+        }
+    }
+    for k in 0..kept.len() {
+        if !used[k] {
+            let start = links.len();
+            walk(k, kept[k].ends[0] as usize, &mut used, &mut links);
+            chains.push(Chain {
+                links: start..links.len(),
+                from: None,
+                to: None,
+            });
+        }
+    }
+    (chains, links)
+}
+
+/// The complex of `diagram` (the diagram of `g`'s generators) in the scene's mode.
+pub(super) fn assemble(
+    g: &Generators,
+    scene: &Scene,
+    diagram: &SegmentDiagram,
+    bisectors: bool,
+    phases: &mut Phases,
+) -> Result<VoronoiComplex, Error> {
+    let mode = scene.mode;
+    let tol = scene.epsilon / 4.0;
+    let joints = joints::tangent_joints(&g.points, &g.segments, &g.arcs);
+    let at_joint = |x: Gen| matches!(x, Gen::Point(p) if joints.contains_key(&p));
+    let (mut raw_vertices, mut raw_edges) = diagram.raw(tol, |a, b| {
+        g.shown(a, b, mode) || at_joint(a) || at_joint(b)
+    })?;
+    phases.end("raw");
+    let nv = raw_vertices.len();
+    // Contracting a tip moves edge ends by its length: at most epsilon/8 (tips are
+    // points up to rounding, which grows where the sliver's sides meet a bisector at
+    // a shallow angle far out).
+    let tip_tol = scene.epsilon / 8.0;
+    let length = |e: &RawEdge| {
+        let mut points = Vec::new();
+        diagram.polyline(e.half, tol, &mut points);
+        points.windows(2).map(|w| w[0].dist(w[1])).sum()
+    };
+    let tips = joints::collapse(&joints, tip_tol, &mut raw_vertices, &mut raw_edges, length);
+    // Vertices joined by zero-length edges are one vertex, and so are the vertices
+    // of a tangent joint's tip.
+    let mut parent: Vec<usize> = (0..nv).collect();
+    let zero_ends = raw_edges.iter().filter(|e| e.zero).map(|e| e.ends);
+    for [a, b] in zero_ends.chain(tips) {
+        let (a, b) = (find(&mut parent, a), find(&mut parent, b));
+        parent[a.max(b)] = a.min(b);
+    }
+    let root: Vec<u32> = (0..nv).map(|v| find(&mut parent, v) as u32).collect();
+    // The labels (sequential), side by side with the kept edges (shown, of positive
+    // length, a merged vertex at its root) and the edges around each vertex.
+    let (labels, (kept, incident)) = join(
+        || Labels::of(g, mode, &raw_vertices, &root),
+        || {
+            let kept: Vec<Kept> = filter_map_range(raw_edges.len(), 1 << 12, |k| {
+                let e = &raw_edges[k];
+                (!e.zero && g.shown(e.gens[0], e.gens[1], mode)).then(|| Kept {
+                    gens: e.gens,
+                    ends: e.ends.map(|v| root[v]),
+                    half: e.half,
+                    on_normal: e.on_normal,
+                })
+            });
+            let incident = Incident::of(&kept, nv);
+            (kept, incident)
+        },
+    );
+    drop(raw_edges);
+    // Insides of polygons, clipping, output indices.
+    let domain = scene.domain;
+    // Where an edge ends on a site (a corner), the two distance fields are not
+    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
+    let hair = 1e-9 * domain.longest_side();
+    let (chains, links) = chain_edges(&kept, &incident, &labels, |v| raw_vertices[v].t <= hair);
+    // A chain's polyline: its edges' polylines in order (each projected onto its
+    // tangent joint's normal if it lies on one), from their ends' merged vertices, with
+    // the stretches they make.
+    let draw = |chain: &Chain| {
+        // Inline for a straight edge: no heap allocation.
+        let mut points: SmallVec<[Point; 2]> = SmallVec::new();
+        let (mut stretches, mut edge) = (Vec::new(), Vec::new());
+        for &(k, forward) in &links[chain.links.clone()] {
+            let e = &kept[k];
+            edge.clear();
+            diagram.polyline(e.half, tol, &mut edge);
+            if let Some(p) = e.on_normal {
+                let joint = &joints[&p];
+                edge.iter_mut().for_each(|q| *q = joint.onto(*q));
+            }
+            let last = edge.len() - 1;
+            edge[0] = raw_vertices[e.ends[0] as usize].at;
+            edge[last] = raw_vertices[e.ends[1] as usize].at;
+            if !forward {
+                edge.reverse();
+            }
+            stretches.push(Stretch {
+                start: points.len().saturating_sub(1),
+                gens: e.gens,
+            });
+            let skip = usize::from(!points.is_empty());
+            points.extend_from_slice(&edge[skip..]);
+        }
+        if chain.from.is_none() && points.first() != points.last() {
+            points.push(points[0]);
+        }
+        (points, stretches)
+    };
+    let mut out = VoronoiComplex::default();
+    // Output vertices are numbered in the order the edges first meet them; `shown`
+    // lists their raw vertices in that order.
+    let mut out_index: Vec<Option<usize>> = vec![None; nv];
+    let mut shown: Vec<usize> = Vec::new();
+    let mut vertex_out = |v: usize| -> Option<usize> {
+        domain.contains(raw_vertices[v].at).then(|| {
+            *out_index[v].get_or_insert_with(|| {
+                shown.push(v);
+                shown.len() - 1
+            })
+        })
+    };
+    let pull = |points: &mut [Point], at_start: bool| {
+        let n = points.len();
+        let (end, next) = if at_start { (0, 1) } else { (n - 1, n - 2) };
+        let (p, q) = (points[end], points[next]);
+        let len = p.dist(q);
+        if len > 0.0 {
+            points[end] = p.lerp(q, (hair / len).min(0.5));
+        }
+    };
+    // Drawn, pulled, kept by the insides, clipped: chain by chain (in parallel), then
+    // numbered in order.
+    let clip = |c: usize| {
+        let Chain { from, to, .. } = chains[c];
+        let first = &kept[links[chains[c].links.start].0];
+        let sites = first.gens.map(|x| g.label(x, mode));
+        let (mut points, stretches) = draw(&chains[c]);
+        if from.is_some_and(|v| raw_vertices[v].t <= hair) {
+            pull(&mut points, true);
+        }
+        if to.is_some_and(|v| raw_vertices[v].t <= hair) {
+            pull(&mut points, false);
+        }
+        let mid = (points.len() - 1) / 2;
+        let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
+        (inside == (mode == Mode::MedialAxis)).then(|| {
+            // Most chains lie wholly inside the domain: kept as they are.
+            let whole = points.len() >= 2 && points.iter().all(|&p| domain.contains(p));
+            let pieces = if whole {
+                vec![(points, false, false, 0)]
+            } else {
+                let pieces = clip_polyline(&points, &domain).into_iter();
+                pieces
+                    .map(|(p, s, e, f)| (SmallVec::from_vec(p), s, e, f))
+                    .collect()
+            };
+            let pieces = pieces
+                .into_iter()
+                .map(|(piece, start_cut, end_cut, first)| {
+                    let form = if bisectors {
+                        g.bisector(&piece, first, &stretches, hair)
+                    } else {
+                        Vec::new()
+                    };
+                    (piece, start_cut, end_cut, form)
+                })
+                .collect::<Vec<_>>();
+            (pieces, from, to, sites)
+        })
+    };
+    let clipped = map_range(chains.len(), 1 << 10, clip);
+    out.edges.reserve(clipped.len());
+    for (mut pieces, from, to, sites) in clipped.into_iter().flatten() {
+        let closed_loop = from.is_none();
+        // A closed loop cut by the domain whose first point is inside: its last piece
+        // runs on into its first (the loop repeats its first point last).
+        if closed_loop && pieces.len() >= 2 && !pieces[0].1 {
+            let (last, start_cut, _, last_form) = pieces.pop().expect("two pieces");
+            let first = &mut pieces[0];
+            first.0 = last.into_iter().chain(first.0.drain(1..)).collect();
+            first.1 = start_cut;
+            first.3 = if last_form.is_empty() || first.3.is_empty() {
+                Vec::new()
+            } else {
+                last_form.into_iter().chain(first.3.drain(..)).collect()
+            };
+        }
+        for (piece, start_cut, end_cut, bisector) in pieces {
+            let from = if start_cut || closed_loop {
+                None
+            } else {
+                from.and_then(&mut vertex_out)
+            };
+            let to = if end_cut || closed_loop {
+                None
+            } else {
+                to.and_then(&mut vertex_out)
+            };
+            out.edges.push(Edge {
+                sites,
+                from,
+                to,
+                points: piece,
+                bisector,
+            });
+        }
+    }
+    out.vertices = map_range(shown.len(), 1 << 12, |k| {
+        let v = shown[k];
+        let mut sites: SmallVec<[Generator; 3]> = labels.of_vertex(v).iter().copied().collect();
+        sites.sort();
+        Vertex {
+            at: raw_vertices[v].at,
+            sites,
+        }
+    });
+    Ok(out)
+}
+
+/// The pieces of a polyline inside the closed box `b`, each with whether its start and
+/// its end were cut by the box, and the index of the polyline's segment it starts on
+/// (its segment `j` lies on the polyline's segment `first + j`).
+fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool, usize)> {
+    let mut pieces = Vec::new();
+    let mut cur: Vec<Point> = Vec::new();
+    let (mut cur_cut, mut cur_first) = (false, 0);
+    for (k, w) in points.windows(2).enumerate() {
+        let Some((t0, t1)) = clip_range(w[0], w[1], b) else {
+            if !cur.is_empty() {
+                pieces.push((std::mem::take(&mut cur), cur_cut, true, cur_first));
+            }
+            continue;
+        };
+        let (p0, p1) = (w[0].lerp(w[1], t0), w[0].lerp(w[1], t1));
+        if cur.is_empty() {
+            cur.push(b.clamp(p0));
+            (cur_cut, cur_first) = (t0 > 0.0, k);
+        }
+        cur.push(b.clamp(p1));
+        if t1 < 1.0 {
+            pieces.push((std::mem::take(&mut cur), cur_cut, true, cur_first));
+        }
+    }
+    if cur.len() >= 2 {
+        pieces.push((cur, cur_cut, false, cur_first));
+    }
+    pieces.retain(|(p, ..)| p.len() >= 2);
+    pieces
+}
+
+/// The parameter range of `a + t (b − a)`, `t ∈ [0, 1]`, inside `bx`.
+fn clip_range(a: Point, b: Point, bx: &Aabb) -> Option<(f64, f64)> {
+    let (t0, t1) = bx.line_range(a, b - a)?;
+    let (t0, t1) = (t0.max(0.0), t1.min(1.0));
+    (t0 <= t1).then_some((t0, t1))
+}

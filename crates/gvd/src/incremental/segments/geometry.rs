@@ -193,6 +193,19 @@ impl Bisector {
         }
     }
 
+    /// Whether the bisector of `a` and `b` is a [`Bisector::Line`] (see `through`):
+    /// two points, two segments, or a segment and one of its ends (the separator).
+    /// Polylines of these need not build it.
+    pub(crate) fn is_line(a: Shape, b: Shape) -> bool {
+        match (a, b) {
+            (Shape::Point(..), Shape::Point(..)) | (Shape::Segment(_), Shape::Segment(_)) => true,
+            (Shape::Point(id, _), Shape::Segment(l)) | (Shape::Segment(l), Shape::Point(id, _)) => {
+                l.ends.contains(&id)
+            }
+            _ => false,
+        }
+    }
+
     /// The bisector nearest to the probes (one for the straight choices).
     fn through(a: Shape, b: Shape, probes: &[Point]) -> Bisector {
         let near = probes[0];

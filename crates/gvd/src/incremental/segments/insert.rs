@@ -96,7 +96,7 @@ impl Sites<'_> {
         Bisector::of_edge(self.shape(a), self.shape(b), from, to)
     }
 
-    fn shape(&self, g: Gen) -> Shape<'_> {
+    pub(crate) fn shape(&self, g: Gen) -> Shape<'_> {
         match g {
             Gen::Point(i) => Shape::Point(i, self.points[i as usize]),
             Gen::Segment(i) => Shape::Segment(&self.lines[i as usize]),

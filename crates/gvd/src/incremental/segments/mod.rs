@@ -31,7 +31,7 @@ use super::PointDiagram;
 use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range};
 use crate::Error;
-use geometry::{Arc, Line};
+use geometry::{Arc, Bisector, Line};
 use graph::{Graph, GHOST, NONE};
 use insert::{insert_site, InsertError, Scratch, Sites};
 use smallvec::SmallVec;
@@ -284,18 +284,6 @@ impl SegmentDiagram {
         })
     }
 
-    /// Whether the bisector of `a` and `b` is a line: two points, two segments, or a
-    /// segment and one of its ends (the separator).
-    fn straight(&self, a: Gen, b: Gen) -> bool {
-        match (a, b) {
-            (Gen::Point(_), Gen::Point(_)) | (Gen::Segment(_), Gen::Segment(_)) => true,
-            (Gen::Point(p), Gen::Segment(s)) | (Gen::Segment(s), Gen::Point(p)) => {
-                self.lines[s as usize].ends.contains(&p)
-            }
-            _ => false,
-        }
-    }
-
     /// Appends to `out` a polyline within `tol` of the bisector of half-edge `h`, from
     /// its origin to its target, in input coordinates.
     pub(crate) fn polyline(&self, h: u32, tol: f64, out: &mut Vec<Point>) {
@@ -308,16 +296,16 @@ impl SegmentDiagram {
         );
         let (ga, gb) = (g.faces[he.face as usize].gen, g.faces[tw.face as usize].gen);
         let inv = 1.0 / self.scale;
-        if self.straight(ga, gb) {
-            out.extend([pa * inv, pb * inv]);
-            return;
-        }
         let sites = Sites {
             points: &self.points,
             lines: &self.lines,
             arcs: &self.arcs,
             faces_at_point: &[],
         };
+        if Bisector::is_line(sites.shape(ga), sites.shape(gb)) {
+            out.extend([pa * inv, pb * inv]);
+            return;
+        }
         let start = out.len();
         sites
             .bisector(ga, gb, pa, pb)

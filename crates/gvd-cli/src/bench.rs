@@ -106,12 +106,13 @@ pub fn random_scene(kind: &str, n: usize, seed: u64) -> Scene {
             }
         })
         .collect();
-    Scene {
-        domain: Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
-        epsilon: 0.001,
-        mode: Mode::Voronoi,
+    Scene::new(
+        Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
+        0.001,
+        Mode::Voronoi,
         sites,
-    }
+    )
+    .expect("a valid scene")
 }
 
 /// Best wall-clock seconds over `repeat` runs, and the box count.
@@ -150,7 +151,10 @@ fn table1_rows(kind: &str, row: &[(f64, u64); 5], options: &gvd::Options, repeat
 pub fn emiris_table1(large: bool, repeat: usize) {
     let one_core = gvd::Options {
         engine: gvd::Engine::Subdivision,
-        max_box: Some(0.05),
+        subdivision: gvd::SubdivisionOptions {
+            max_box: Some(0.05),
+            ..Default::default()
+        },
         parallel: false,
         ..Default::default()
     };
@@ -165,9 +169,12 @@ pub fn emiris_table1(large: bool, repeat: usize) {
     }
     // the lp rows again through Bernstein forms, the representation the paper uses
     let bernstein = gvd::Options {
-        fields: gvd::site::FieldOptions {
-            bernstein_lp: true,
-            ..Default::default()
+        subdivision: gvd::SubdivisionOptions {
+            fields: gvd::FieldOptions {
+                bernstein_lp: true,
+                ..Default::default()
+            },
+            ..one_core.subdivision.clone()
         },
         ..one_core.clone()
     };
@@ -182,7 +189,10 @@ pub fn emiris_table1(large: bool, repeat: usize) {
         let threads = rayon::current_num_threads();
         let many = gvd::Options {
             engine: gvd::Engine::Subdivision,
-            max_box: Some(0.05),
+            subdivision: gvd::SubdivisionOptions {
+                max_box: Some(0.05),
+                ..Default::default()
+            },
             parallel: true,
             ..Default::default()
         };

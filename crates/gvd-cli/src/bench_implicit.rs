@@ -3,20 +3,22 @@
 
 use crate::bench::Rng;
 use gvd::geom::{Aabb, Point};
+use gvd::internals::SiteField;
 use gvd::scene::{Metric, Mode, Scene, Site, SiteKind};
-use gvd::site::{FieldOptions, SiteField};
+use gvd::FieldOptions;
 use std::time::Instant;
 
 fn scene(sites: Vec<SiteKind>) -> Scene {
-    Scene {
-        domain: Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
-        epsilon: 0.001,
-        mode: Mode::Voronoi,
-        sites: sites
+    Scene::new(
+        Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
+        0.001,
+        Mode::Voronoi,
+        sites
             .into_iter()
             .map(|kind| Site { id: None, kind })
             .collect(),
-    }
+    )
+    .expect("a valid scene")
 }
 
 /// `n` disjoint shapes of reach `size(rng)` in [-2,2]² on a jittered grid (one per cell).
@@ -79,13 +81,13 @@ fn time(scene: &Scene, fields: FieldOptions, parallel: bool, repeat: usize) -> (
     for _ in 0..repeat {
         let t = Instant::now();
         let f = SiteField::for_scene_with(scene, &fields).expect("benchmark scenes are valid");
-        let params = gvd::subdivision::Params {
-            domain: scene.domain,
-            epsilon: scene.epsilon,
+        let params = gvd::internals::SubdivisionParams {
+            domain: scene.domain(),
+            epsilon: scene.epsilon(),
             max_box: None,
             parallel,
         };
-        let out = gvd::subdivision::run(&f, &params);
+        let out = gvd::internals::subdivide(&f, &params);
         best = best.min(t.elapsed().as_secs_f64());
         boxes = out
             .complex
@@ -118,7 +120,7 @@ pub fn implicit(large: bool, repeat: usize) {
         println!(
             "{:<26} {:>6} | {:>9.3} {:>9.3} {:>6.2}x | {:>8}",
             name,
-            sc.sites.len(),
+            sc.sites().len(),
             t1,
             tn,
             t1 / tn,

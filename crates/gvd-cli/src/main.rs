@@ -141,10 +141,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let sc = read_scene(&scene)?;
             let options = gvd::Options {
                 engine: engine.into(),
-                max_box,
                 parallel: threads != Some(1),
-                bisectors,
-                ..Default::default()
+                subdivision: gvd::SubdivisionOptions {
+                    max_box,
+                    ..Default::default()
+                },
+                incremental: gvd::IncrementalOptions { bisectors },
             };
             let out = gvd::compute_with_boxes(&sc, &options)
                 .with_context(|| format!("{}", scene.display()))?;

@@ -15,7 +15,7 @@
 //! 10^6, one run at 10^6 and above.
 
 use gvd::geom::{Aabb, Point};
-use gvd::incremental::{points_voronoi, PointDiagram};
+use gvd::internals::{points_voronoi, PointDiagram};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::time::Instant;
 

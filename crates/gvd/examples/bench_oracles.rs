@@ -23,7 +23,7 @@
 //!   which the incremental engine does not use). An error (segments before the
 //!   engine supports them) is printed with its message ("unsupported", "error"),
 //!   not as a failure of the run.
-//! * **gvd-nocells** (points only, an extra column): `gvd::incremental::points_voronoi`,
+//! * **gvd-nocells** (points only, an extra column): `gvd::internals::points_voronoi`,
 //!   the same complex without the cells, to show what the cells cost.
 //! * **spade** (points only): `DelaunayTriangulation::bulk_load` of the points.
 //! * **boostvoronoi** (points and segments): `Builder::with_vertices`,
@@ -62,7 +62,7 @@ use std::time::{Duration, Instant};
 /// boostvoronoi's integer input: coordinate * 2^20, as `oracle_boost --scale` by default.
 const BOOST_SCALE: f64 = 1048576.0;
 
-/// The libraries, in column order; "gvd-nocells" is `gvd::incremental::points_voronoi`
+/// The libraries, in column order; "gvd-nocells" is `gvd::internals::points_voronoi`
 /// (the clipped complex without the cells that `compute` adds), for points only.
 const LIBS: [&str; 4] = ["gvd", "spade", "boost", "gvd-nocells"];
 
@@ -281,11 +281,11 @@ fn scan(dir: &Path) -> Vec<Case> {
             }
         };
         let points = scene
-            .sites
+            .sites()
             .iter()
             .filter(|s| matches!(s.kind, SiteKind::Point { .. }))
             .count();
-        let kind = if points == scene.sites.len() {
+        let kind = if points == scene.sites().len() {
             "points"
         } else if points == 0 {
             "segments"
@@ -295,7 +295,7 @@ fn scan(dir: &Path) -> Vec<Case> {
         cases.push(Case {
             path,
             kind,
-            n: scene.sites.len(),
+            n: scene.sites().len(),
         });
     }
     cases
@@ -482,7 +482,7 @@ fn child(args: &[String]) -> i32 {
     };
     let parse = t.elapsed().as_secs_f64();
     drop(text);
-    let domain = scene.domain;
+    let domain = scene.domain();
     let (result, base) = match lib.as_str() {
         "gvd" => {
             let options = Options {
@@ -504,7 +504,7 @@ fn child(args: &[String]) -> i32 {
         }
         "gvd-nocells" => {
             let points: Option<Vec<gvd::geom::Point>> = scene
-                .sites
+                .sites()
                 .iter()
                 .map(|s| match s.kind {
                     SiteKind::Point {
@@ -522,7 +522,7 @@ fn child(args: &[String]) -> i32 {
                     let r = best_of(
                         runs,
                         || {
-                            gvd::incremental::points_voronoi(&points, domain)
+                            gvd::internals::points_voronoi(&points, domain)
                                 .map_err(|e| format!("{e}"))
                         },
                         |c| (c.vertices.len(), c.edges.len(), String::new()),
@@ -533,7 +533,7 @@ fn child(args: &[String]) -> i32 {
         }
         "spade" => {
             let points: Result<Vec<Point2<f64>>, String> = scene
-                .sites
+                .sites()
                 .iter()
                 .enumerate()
                 .map(|(i, s)| match s.kind {
@@ -663,7 +663,7 @@ fn boost_input(scene: &Scene) -> Result<BoostInput, String> {
         Ok(r as i32)
     };
     let (mut points, mut segments) = (Vec::new(), Vec::new());
-    for (i, s) in scene.sites.iter().enumerate() {
+    for (i, s) in scene.sites().iter().enumerate() {
         match s.kind {
             SiteKind::Point {
                 at,

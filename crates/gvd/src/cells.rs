@@ -2,6 +2,7 @@
 //! polylines and the domain boundary form, each labelled with the site it belongs to.
 
 use crate::complex::{Cell, VoronoiComplex};
+use crate::geom::ring::{even_odd_contains, signed_area};
 use crate::geom::{Aabb, Point};
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
@@ -152,7 +153,7 @@ fn vote(f: &Face, label: &(dyn Fn(Point) -> usize + Sync)) -> Option<usize> {
         let inside = [0.25, 0.02]
             .into_iter()
             .map(|t| mid + (q - p).perp() * t)
-            .find(|&x| point_in_ring(x, &f.ring) == (f.area > 0.0));
+            .find(|&x| even_odd_contains(&f.ring, x) == (f.area > 0.0));
         let Some(s) = inside.map(label).filter(|s| sites.contains(s)) else {
             continue;
         };
@@ -511,26 +512,6 @@ fn dedup(points: impl Iterator<Item = Point>, tol: f64) -> Vec<Point> {
     out
 }
 
-fn signed_area(ring: &[Point]) -> f64 {
-    let n = ring.len();
-    0.5 * (0..n)
-        .map(|i| ring[i].cross(ring[(i + 1) % n]))
-        .sum::<f64>()
-}
-
-/// Even-odd point-in-polygon test.
-fn point_in_ring(p: Point, ring: &[Point]) -> bool {
-    let n = ring.len();
-    let mut inside = false;
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            inside = !inside;
-        }
-    }
-    inside
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -871,11 +852,11 @@ mod tests {
         let sites: Vec<Point> = (0..50)
             .map(|_| domain.at(uniform() * 1.1 - 0.05, uniform() * 1.1 - 0.05))
             .collect();
-        let scene = Scene {
+        let scene = Scene::new(
             domain,
-            epsilon: 1e-4,
-            mode: Mode::Voronoi,
-            sites: sites
+            1e-4,
+            Mode::Voronoi,
+            sites
                 .iter()
                 .map(|&at| Site {
                     id: None,
@@ -885,7 +866,8 @@ mod tests {
                     },
                 })
                 .collect(),
-        };
+        )
+        .expect("a valid scene");
         let diagram = crate::compute(&scene, &crate::Options::default()).unwrap();
         let cells = build_cells(&diagram, &domain, &nearest(&sites));
         let total: f64 = cells.iter().map(area).sum();
@@ -901,7 +883,7 @@ mod tests {
                 .find(|c| c.site == i)
                 .unwrap_or_else(|| panic!("no cell for site {i}"));
             assert!(
-                c.rings.iter().filter(|r| point_in_ring(s, r)).count() % 2 == 1,
+                c.rings.iter().filter(|r| even_odd_contains(r, s)).count() % 2 == 1,
                 "site {i} outside its cell"
             );
             let want = exact_cell(&sites, i, &domain);

@@ -13,8 +13,11 @@ use std::collections::BTreeMap;
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum FeatureKind {
+    /// A corner of a polyline or polygon site.
     Corner,
+    /// An edge of a polyline or polygon site.
     Edge,
+    /// A piece of a curved site between its breaks.
     Piece,
 }
 
@@ -22,10 +25,15 @@ pub enum FeatureKind {
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum Generator {
+    /// A whole site, by its index in the scene.
     Site(usize),
+    /// A feature of a site: one of its corners, edges or pieces.
     Feature {
+        /// The site's index in the scene.
         site: usize,
+        /// What kind of feature.
         feature: FeatureKind,
+        /// The feature's index within the site (corners and edges numbered across rings).
         index: usize,
     },
 }
@@ -44,6 +52,7 @@ impl Generator {
 /// than three when near-degenerate vertices within epsilon are merged).
 #[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
 pub struct Vertex {
+    /// Where the vertex is.
     pub at: Point,
     /// Usually three, stored inline.
     pub sites: SmallVec<[Generator; 3]>,
@@ -53,8 +62,11 @@ pub struct Vertex {
 /// from vertex `from` to vertex `to` (`None` where it ends on the domain boundary).
 #[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
 pub struct Edge {
+    /// The two generators the edge separates.
     pub sites: [Generator; 2],
+    /// The vertex the edge starts at (`None`: it starts on the domain boundary).
     pub from: Option<usize>,
+    /// The vertex the edge ends at (`None`: it ends on the domain boundary).
     pub to: Option<usize>,
     /// Two for a straight edge, stored inline.
     pub points: SmallVec<[Point; 2]>,
@@ -76,10 +88,13 @@ pub struct Edge {
 /// changes sign (at the apex, the point of least clearance).
 #[derive(Clone, Copy, PartialEq, Debug, Serialize, Deserialize)]
 pub struct BisectorPiece {
+    /// The coefficients `x1..x8` of the `x` coordinate's offset-parameter form.
     pub x: [f64; 8],
+    /// The coefficients `x1..x8` of the `y` coordinate's offset-parameter form.
     pub y: [f64; 8],
     /// +1 or −1: the branch of the root.
     pub sign: i8,
+    /// The range of the clearance `t` over the piece.
     pub t: [f64; 2],
 }
 
@@ -98,6 +113,7 @@ impl BisectorPiece {
 /// A site's cell clipped to the domain, as closed rings (last point not repeated).
 #[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
 pub struct Cell {
+    /// The site (or generator index) whose cell this is.
     pub site: usize,
     /// Usually one (a cell with holes has more), stored inline.
     pub rings: SmallVec<[Vec<Point>; 1]>,
@@ -106,9 +122,12 @@ pub struct Cell {
 /// The Voronoi diagram (or complex, or medial axis) of a scene.
 #[derive(Clone, PartialEq, Debug, Default, Serialize, Deserialize)]
 pub struct VoronoiComplex {
+    /// The Voronoi vertices.
     pub vertices: Vec<Vertex>,
+    /// The edges, each a polyline within epsilon of its bisector.
     pub edges: Vec<Edge>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    /// The cells as rings, when computed.
     pub cells: Vec<Cell>,
     /// Figures of the run: `seconds`, `boxes`, `uncertified_boxes`, ...
     #[serde(default)]
@@ -116,6 +135,30 @@ pub struct VoronoiComplex {
 }
 
 impl VoronoiComplex {
+    /// Multiplies every length by `s`: vertices, edge points, cells, and the offset
+    /// forms (`x1, x2, x5, x7` and the clearances are lengths; `x3, x4, x6, x8` are
+    /// ratios). With the inverse of [`crate::Scene::unit_scale`] it takes a diagram
+    /// computed at unit scale back to the scene's.
+    pub fn scale(&mut self, s: f64) {
+        for v in &mut self.vertices {
+            v.at = v.at * s;
+        }
+        for e in &mut self.edges {
+            e.points.iter_mut().for_each(|q| *q = *q * s);
+            for piece in &mut e.bisector {
+                for coeffs in [&mut piece.x, &mut piece.y] {
+                    for k in [0, 1, 4, 6] {
+                        coeffs[k] *= s;
+                    }
+                }
+                piece.t = piece.t.map(|t| t * s);
+            }
+        }
+        for cell in &mut self.cells {
+            cell.rings.iter_mut().flatten().for_each(|q| *q = *q * s);
+        }
+    }
+
     /// Checks the structural invariants every algorithm must keep: edge ends name
     /// existing vertices that list the edge's generators, edges have at least two
     /// points, and a loop with no vertex is closed. Returns the first violation.

@@ -25,21 +25,35 @@ pub enum Engine {
     Incremental,
 }
 
-/// How to compute a diagram.
+/// How to compute a diagram: the engine, and each engine's own knobs.
 #[derive(Clone, Debug)]
 pub struct Options {
     /// Which algorithm family to use.
     pub engine: Engine,
-    /// Boxes holding two or more sites are split until no longer than this (the
-    /// "maximum admissible box size" of Emiris et al., for smoother curves); `None`
-    /// lets the certificates decide alone.
-    pub max_box: Option<f64>,
-    /// Process independent boxes in parallel (same result either way).
+    /// Work in parallel (same result either way).
     pub parallel: bool,
+    /// Knobs of the subdivision engine.
+    pub subdivision: SubdivisionOptions,
+    /// Knobs of the incremental engine.
+    pub incremental: IncrementalOptions,
+}
+
+/// Knobs of the subdivision engine (EMM13).
+#[derive(Clone, Debug, Default)]
+pub struct SubdivisionOptions {
+    /// Boxes holding two or more sites are split until no longer than this (the
+    /// "maximum admissible box size" of (EMM13), for smoother curves); `None` lets the
+    /// certificates decide alone.
+    pub max_box: Option<f64>,
     /// Choices among equivalent distance fields (closed forms or the general paths).
     pub fields: FieldOptions,
-    /// Give every edge of the incremental engine its exact bisector in
-    /// offset-parameter form ([`crate::complex::Edge::bisector`]).
+}
+
+/// Knobs of the incremental engine (SI92, Hel01).
+#[derive(Clone, Debug, Default)]
+pub struct IncrementalOptions {
+    /// Give every edge its exact bisector in offset-parameter form
+    /// ([`crate::complex::Edge::bisector`]).
     pub bisectors: bool,
 }
 
@@ -47,10 +61,9 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             engine: Engine::Auto,
-            max_box: None,
             parallel: cfg!(feature = "parallel"),
-            fields: FieldOptions::default(),
-            bisectors: false,
+            subdivision: SubdivisionOptions::default(),
+            incremental: IncrementalOptions::default(),
         }
     }
 }
@@ -58,7 +71,9 @@ impl Default for Options {
 /// A computed diagram with the subdivision boxes that span it (each with its number of
 /// surviving sites), for pictures and box counts.
 pub struct Computation {
+    /// The diagram.
     pub complex: VoronoiComplex,
+    /// The subdivision's leaves, each with its number of surviving sites.
     pub boxes: Vec<(Aabb, usize)>,
 }
 
@@ -73,33 +88,33 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {
             return timed_incremental(|| {
-                let diagram = incremental::PointDiagram::new(&points, scene.domain)?;
+                let diagram = incremental::PointDiagram::new(&points, scene.domain())?;
                 let (mut complex, traced) = diagram.to_complex_with_cells();
                 drop(diagram);
                 if !traced {
                     // Not expected with exact signs: the generic cells from the edges.
                     let grid = PointGrid::new(&points);
-                    complex.cells = cells::build_cells(&complex, &scene.domain, &|q| {
+                    complex.cells = cells::build_cells(&complex, &scene.domain(), &|q| {
                         grid.nearest(q).unwrap_or(0)
                     });
                     complex
                         .stats
                         .insert("cells_from_edges".into(), serde_json::json!(true));
                 }
-                if options.bisectors {
-                    incremental::add_point_bisectors(&mut complex, &points, scene.domain);
+                if options.incremental.bisectors {
+                    incremental::add_point_bisectors(&mut complex, &points, scene.domain());
                 }
                 Ok(complex)
             });
         }
         (Engine::Auto | Engine::Incremental, None) if incremental::linear::supports(scene) => {
             return timed_incremental(|| {
-                incremental::linear::linear_voronoi(scene, options.bisectors)
+                incremental::linear::linear_voronoi(scene, options.incremental.bisectors)
             });
         }
         (Engine::Incremental, None) => {
             let (site, kind) = scene
-                .sites
+                .sites()
                 .iter()
                 .enumerate()
                 .find(|(_, s)| !incremental::linear::supports_site(&s.kind))
@@ -113,11 +128,11 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         }
         _ => {}
     }
-    let fields = SiteField::for_scene_with(scene, &options.fields)?;
+    let fields = SiteField::for_scene_with(scene, &options.subdivision.fields)?;
     let params = subdivision::Params {
-        domain: scene.domain,
-        epsilon: scene.epsilon,
-        max_box: options.max_box,
+        domain: scene.domain(),
+        epsilon: scene.epsilon(),
+        max_box: options.subdivision.max_box,
         parallel: options.parallel,
     };
     let out = subdivision::run(&fields, &params);
@@ -148,7 +163,7 @@ fn timed_incremental(
 /// The sites' positions when every site is a Euclidean point.
 fn euclidean_points(scene: &Scene) -> Option<Vec<Point>> {
     scene
-        .sites
+        .sites()
         .iter()
         .map(|s| match s.kind {
             SiteKind::Point {

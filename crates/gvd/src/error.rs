@@ -10,26 +10,40 @@ pub enum Error {
     Json(String),
     /// A scene-level field is missing or invalid (`domain`, `epsilon`, `mode`, `sites`).
     #[error("field '{field}': {message}")]
-    Scene { field: String, message: String },
+    Scene {
+        /// The field at fault.
+        field: String,
+        /// Why it was refused.
+        message: String,
+    },
     /// A site's field is missing or invalid.
     #[error("site {site} field '{field}': {message}")]
     Site {
+        /// The site's index in the scene.
         site: usize,
+        /// The field at fault (`at`, `metric.p`, `rings`, …).
         field: String,
+        /// Why it was refused.
         message: String,
     },
     /// The site is valid but the chosen algorithm cannot compute it (yet).
     #[error("site {site} (kind '{kind}'): {message}")]
     Unsupported {
+        /// The site's index in the scene.
         site: usize,
+        /// The site's kind (`bezier`, …).
         kind: String,
+        /// What the engine cannot do.
         message: String,
     },
     /// Two sites cross, overlap, or one touches the other's interior.
     #[error("sites {site} and {other}: {message}")]
     Conflict {
+        /// The first site's index.
         site: usize,
+        /// The other site's index.
         other: usize,
+        /// How they meet.
         message: String,
     },
     /// An engine could not complete (a bug, reported instead of a wrong diagram).

@@ -61,15 +61,24 @@ use std::ops::Range;
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum Primitive {
     /// The segment from `from` to `to`.
-    Line { from: Point, to: Point },
+    Line {
+        /// The first end.
+        from: Point,
+        /// The last end.
+        to: Point,
+    },
     /// The arc of the circle `|x − center| = radius` from `start_angle` to `end_angle`
     /// (radians, `start_angle` in `[0, 2π)`, `|end_angle − start_angle| ≤ 2π`):
     /// counter-clockwise when `start_angle < end_angle`, clockwise (the inner side of an
     /// arc site) when `end_angle < start_angle`.
     Arc {
+        /// The circle's centre.
         center: Point,
+        /// The circle's radius.
         radius: f64,
+        /// The angle of the first end (radians).
         start_angle: f64,
+        /// The angle of the last end (below `start_angle` for a clockwise arc).
         end_angle: f64,
     },
 }
@@ -109,13 +118,16 @@ pub struct Curve {
     /// Whether the last primitive ends where the first starts (else both ends lie on
     /// the domain's boundary).
     pub closed: bool,
+    /// The pieces, end to end.
     pub primitives: Vec<Primitive>,
 }
 
 /// The offset curves of a scene at one distance.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Offset {
+    /// The offset distance.
     pub distance: f64,
+    /// The offset curves.
     pub curves: Vec<Curve>,
     /// Figures of the run: `seconds`, `features`, `crossings`, `fallbacks`, ...
     #[serde(default)]
@@ -150,10 +162,8 @@ pub fn offset_scene(
     options: &Options,
 ) -> Result<(Offset, VoronoiComplex), Error> {
     check_distance(distance)?;
-    let diagram = if scene.mode == Mode::Voronoi {
-        let mut complex = scene.clone();
-        complex.mode = Mode::Complex;
-        compute(&complex, options)?
+    let diagram = if scene.mode() == Mode::Voronoi {
+        compute(&scene.clone().with_mode(Mode::Complex), options)?
     } else {
         compute(scene, options)?
     };
@@ -268,19 +278,19 @@ impl Run {
             }));
             level_range.push(first..levels.len());
         }
-        let scale = scene.domain.longest_side().max(d);
+        let scale = scene.domain().longest_side().max(d);
         Run {
             grid: Grid::new(&features.shapes, d),
             features,
             level_range,
             levels,
             d,
-            domain: scene.domain,
-            medial_axis: scene.mode == Mode::MedialAxis,
+            domain: scene.domain(),
+            medial_axis: scene.mode() == Mode::MedialAxis,
             merge: 1e-9 * scale,
             slack: 1e-9 * scale,
             join: 4e-9 * scale,
-            near: 2.0 * scene.epsilon + 1e-9 * scale,
+            near: 2.0 * scene.epsilon() + 1e-9 * scale,
             crossings: 0,
             fallbacks: 0,
         }

@@ -167,7 +167,7 @@ fn nearest_of(items: impl Iterator<Item = (f64, Point)>) -> (f64, Point) {
 fn dist_grad(s: &Scene, g: &Generator, q: Point) -> (f64, Point) {
     match *g {
         Generator::Site(i) => {
-            let kind = &s.sites[i].kind;
+            let kind = &s.sites()[i].kind;
             if let Some(a) = arc_of(kind) {
                 return a.dist_grad(q);
             }
@@ -181,7 +181,7 @@ fn dist_grad(s: &Scene, g: &Generator, q: Point) -> (f64, Point) {
             feature,
             index,
         } => {
-            let kind = &s.sites[site].kind;
+            let kind = &s.sites()[site].kind;
             let (pts, edges) = features(kind);
             match feature {
                 FeatureKind::Corner => from_point(q, pts[index]),
@@ -226,7 +226,7 @@ fn worst_error(s: &Scene, d: &VoronoiComplex) -> (f64, String) {
         // so that nearly parallel gradients never excuse a gap.
         let g = hi.1 - lo.1;
         let tie = (hi.0 - lo.0) / g.dot(g).sqrt().clamp(1.0, 2.0);
-        let err = tie.max(lo.0 - nearest(q)) / s.epsilon;
+        let err = tie.max(lo.0 - nearest(q)) / s.epsilon();
         if err > worst.0 {
             let ds: Vec<f64> = ds.iter().map(|d| d.0).collect();
             worst = (
@@ -252,8 +252,8 @@ fn worst_error(s: &Scene, d: &VoronoiComplex) -> (f64, String) {
 /// ends on the boundary, everything inside the domain.
 fn structure(s: &Scene, d: &VoronoiComplex) -> Result<(), String> {
     d.check_invariants()?;
-    let tol = 1e-3 * s.epsilon;
-    let dom = s.domain;
+    let tol = 1e-3 * s.epsilon();
+    let dom = s.domain();
     let on_boundary = |p: Point| {
         let m = [
             (p.x - dom.min.x).abs(),
@@ -308,7 +308,7 @@ fn corner_at(s: &Scene, g: &Generator) -> Option<Point> {
             site,
             feature: FeatureKind::Corner,
             index,
-        } => Some(features(&s.sites[site].kind).0[index]),
+        } => Some(features(&s.sites()[site].kind).0[index]),
         _ => None,
     }
 }
@@ -327,7 +327,7 @@ fn separator(s: &Scene, c: &Generator, e: &Generator) -> bool {
     };
     match *e {
         Generator::Feature { site, feature, .. } if feature != FeatureKind::Corner => {
-            let (pts, _) = features(&s.sites[site].kind);
+            let (pts, _) = features(&s.sites()[site].kind);
             // Segments and arcs only here: their ends are corners 0 and 1.
             pts.contains(&p)
         }
@@ -341,7 +341,7 @@ fn separator(s: &Scene, c: &Generator, e: &Generator) -> bool {
 /// an edge labelled {A, B} must pass within `h + 2·epsilon` of their midpoint.
 fn missing_edge(s: &Scene, d: &VoronoiComplex, n: usize) -> Option<String> {
     let all = generators(s);
-    let dom = s.domain;
+    let dom = s.domain();
     let h = (dom.max.x - dom.min.x) / n as f64;
     let best = |q: Point| {
         let mut ds: Vec<(f64, usize)> = all
@@ -353,7 +353,7 @@ fn missing_edge(s: &Scene, d: &VoronoiComplex, n: usize) -> Option<String> {
         ds
     };
     let margin = 1e-9;
-    let reach = h + 2.0 * s.epsilon;
+    let reach = h + 2.0 * s.epsilon();
     let near_edge = |m: Point, a: &Generator, b: &Generator| {
         d.edges.iter().any(|e| {
             let labelled = (same_gen(s, &e.sites[0], a) && same_gen(s, &e.sites[1], b))
@@ -453,7 +453,7 @@ fn check_value(v: &Value) -> Result<(), String> {
     let ctx = || serde_json::to_string(v).unwrap();
     let d = incremental(&s).map_err(|e| format!("refused: {e} (scene {})", ctx()))?;
     structure(&s, &d).map_err(|e| format!("structure: {e} (scene {})", ctx()))?;
-    if d.edges.is_empty() && s.sites.len() >= 2 {
+    if d.edges.is_empty() && s.sites().len() >= 2 {
         return Err(format!("no edges (scene {})", ctx()));
     }
     let (err, at) = worst_error(&s, &d);
@@ -632,7 +632,7 @@ fn guarded(mut v: Value) -> Value {
     let sites = v["sites"].as_array_mut().unwrap();
     for (x, y) in [(1.95, 1.95), (-1.95, 1.95), (-1.95, -1.95), (1.95, -1.95)] {
         let q = Point::new(x, y);
-        let clear = (0..s.sites.len()).all(|i| dist(&s, &Generator::Site(i), q) > 0.01);
+        let clear = (0..s.sites().len()).all(|i| dist(&s, &Generator::Site(i), q) > 0.01);
         if clear {
             sites.push(point(x, y));
         }
@@ -957,7 +957,7 @@ fn complex_labels_of_arcs() {
             index,
         } = *g
         {
-            match s.sites[site].kind {
+            match s.sites()[site].kind {
                 SiteKind::Arc { .. } => assert!(
                     matches!(
                         (feature, index),
@@ -1064,8 +1064,8 @@ fn checks_detect_perturbations() {
         .find(|e| e.sites.contains(&Generator::Site(0)) && e.points.len() > 4)
         .unwrap();
     let m = e.points.len() / 2;
-    e.points[m].y += 3.0 * s.epsilon;
-    e.points[m].x += 3.0 * s.epsilon;
+    e.points[m].y += 3.0 * s.epsilon();
+    e.points[m].x += 3.0 * s.epsilon();
     assert!(worst_error(&s, &pushed).0 > 1.0);
     let mut relabelled = d.clone();
     let e = relabelled

@@ -123,8 +123,8 @@ fn project_scenes_parse() {
     assert!(files.len() >= 19, "only {} scenes", files.len());
     for path in files {
         let scene = parse_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        assert!(!scene.sites.is_empty(), "{}", path.display());
-        assert!(scene.epsilon > 0.0);
+        assert!(!scene.sites().is_empty(), "{}", path.display());
+        assert!(scene.epsilon() > 0.0);
     }
 }
 
@@ -210,7 +210,7 @@ fn arb_json() -> impl Strategy<Value = Value> {
 #[test]
 fn every_kind_scene_is_valid() {
     let scene = Scene::from_value(&every_kind()).unwrap();
-    assert_eq!(scene.sites.len(), 13);
+    assert_eq!(scene.sites().len(), 13);
 }
 
 proptest! {

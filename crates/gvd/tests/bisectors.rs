@@ -24,7 +24,7 @@ fn scene(rel: &str) -> Scene {
 fn with_bisectors(s: &Scene) -> VoronoiComplex {
     let options = Options {
         engine: Engine::Incremental,
-        bisectors: true,
+        incremental: gvd::IncrementalOptions { bisectors: true },
         ..Default::default()
     };
     gvd::compute(s, &options).unwrap()
@@ -44,7 +44,7 @@ fn polyline_dist(q: Point, points: &[Point]) -> f64 {
 /// constant clearance (parallel segments, concentric arcs). Returns the number of
 /// edges with pieces.
 fn check(name: &str, s: &Scene, d: &VoronoiComplex) -> usize {
-    let scale = s.domain.longest_side();
+    let scale = s.domain().longest_side();
     let tol = 1e-9 * scale;
     let mut with = 0;
     for (k, e) in d.edges.iter().enumerate() {
@@ -77,7 +77,7 @@ fn check(name: &str, s: &Scene, d: &VoronoiComplex) -> usize {
                 <= if vertex.is_some() {
                     1e-7 * scale
                 } else {
-                    s.epsilon
+                    s.epsilon()
                 }
         };
         assert!(
@@ -105,9 +105,9 @@ fn check(name: &str, s: &Scene, d: &VoronoiComplex) -> usize {
                 }
                 let off = polyline_dist(q, points);
                 assert!(
-                    off <= s.epsilon,
+                    off <= s.epsilon(),
                     "{name}: edge {k}: at t = {t} the form is {off} from the polyline (epsilon {})",
-                    s.epsilon
+                    s.epsilon()
                 );
             }
         }

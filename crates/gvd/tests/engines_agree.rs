@@ -66,14 +66,14 @@ fn incremental_and_subdivision_agree_on_point_scenes() {
         let sc = scene(name);
         let inc = run(&sc, Engine::Incremental);
         let sub = run(&sc, Engine::Subdivision);
-        let eps = sc.epsilon;
+        let eps = sc.epsilon();
         let (vi, vs) = (generators(&inc), generators(&sub));
         // vertices within epsilon of the boundary may be cut differently: compare inside
         let inner = |p: gvd::geom::Point| {
-            p.x - sc.domain.min.x > eps
-                && sc.domain.max.x - p.x > eps
-                && p.y - sc.domain.min.y > eps
-                && sc.domain.max.y - p.y > eps
+            p.x - sc.domain().min.x > eps
+                && sc.domain().max.x - p.x > eps
+                && p.y - sc.domain().min.y > eps
+                && sc.domain().max.y - p.y > eps
         };
         for (p, s) in vi.iter().filter(|(p, _)| inner(*p)) {
             assert!(
@@ -113,7 +113,7 @@ fn empty_and_single_site_scenes_on_both_engines() {
         for engine in [Engine::Incremental, Engine::Subdivision] {
             let d = run(&sc, engine);
             assert!(d.vertices.is_empty() && d.edges.is_empty());
-            assert_eq!(d.cells.len(), sc.sites.len());
+            assert_eq!(d.cells.len(), sc.sites().len());
         }
     }
 }

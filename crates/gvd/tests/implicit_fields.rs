@@ -3,9 +3,9 @@
 
 use gvd::complex::Generator;
 use gvd::geom::{Aabb, Axis, Point};
-use gvd::num::poly::Poly;
+use gvd::internals::{DistanceField, SiteField};
 use gvd::scene::{Equation, Metric, Mode, Scene, Site, SiteKind};
-use gvd::site::{DistanceField, FieldOptions, SiteField};
+use gvd::FieldOptions;
 use gvd::VoronoiComplex;
 use proptest::prelude::*;
 use std::collections::BTreeSet;
@@ -21,13 +21,13 @@ fn data(name: &str) -> Scene {
 /// The diagram through the subdivision engine with the given field choices.
 fn run(scene: &Scene, options: FieldOptions) -> VoronoiComplex {
     let fields = SiteField::for_scene_with(scene, &options).unwrap();
-    let params = gvd::subdivision::Params {
-        domain: scene.domain,
-        epsilon: scene.epsilon,
+    let params = gvd::internals::SubdivisionParams {
+        domain: scene.domain(),
+        epsilon: scene.epsilon(),
         max_box: None,
         parallel: true,
     };
-    gvd::subdivision::run(&fields, &params).complex
+    gvd::internals::subdivide(&fields, &params).complex
 }
 
 fn implicit_circles() -> FieldOptions {
@@ -42,12 +42,13 @@ fn site(kind: SiteKind) -> Site {
 }
 
 fn scene(domain: [f64; 4], epsilon: f64, sites: Vec<SiteKind>) -> Scene {
-    Scene {
-        domain: Aabb::from_array(domain),
+    Scene::new(
+        Aabb::from_array(domain),
         epsilon,
-        mode: Mode::Voronoi,
-        sites: sites.into_iter().map(site).collect(),
-    }
+        Mode::Voronoi,
+        sites.into_iter().map(site).collect(),
+    )
+    .expect("a valid scene")
 }
 
 fn circle(x: f64, y: f64, r: f64) -> SiteKind {
@@ -208,7 +209,7 @@ fn grid_pairs(circles: &[(Point, f64)], domain: &Aabb, n: usize) -> BTreeSet<[us
 
 fn circles_of(scene: &Scene) -> Vec<(Point, f64)> {
     scene
-        .sites
+        .sites()
         .iter()
         .map(|s| match s.kind {
             SiteKind::Circle { center, radius } => (center, radius),
@@ -221,7 +222,7 @@ fn circles_of(scene: &Scene) -> Vec<(Point, f64)> {
 /// force construction.
 fn check_apollonius(scene: &Scene, d: &VoronoiComplex, tol: f64) {
     let circles = circles_of(scene);
-    let brute = brute_vertices(&circles, &scene.domain);
+    let brute = brute_vertices(&circles, &scene.domain());
     let mut used = vec![false; d.vertices.len()];
     for (p, s) in &brute {
         let hit = d
@@ -252,7 +253,7 @@ fn check_apollonius(scene: &Scene, d: &VoronoiComplex, tol: f64) {
             [a.min(b), a.max(b)]
         })
         .collect();
-    let mut theirs = grid_pairs(&circles, &scene.domain, 500);
+    let mut theirs = grid_pairs(&circles, &scene.domain(), 500);
     for (_, s) in &brute {
         theirs.insert([s[0], s[1]]);
         theirs.insert([s[0], s[2]]);
@@ -418,10 +419,7 @@ fn implicit_field_circles_pass_verify_and_match_the_circles() {
 }
 
 fn equation(text: &str) -> Equation {
-    Equation {
-        text: text.to_string(),
-        poly: Poly::parse(text, &['x', 'y', 'z']).unwrap(),
-    }
+    Equation::parse(text, &['x', 'y', 'z']).unwrap()
 }
 
 #[test]
@@ -533,11 +531,11 @@ fn cubic_implicit_field_edges_lie_on_the_bisectors() {
             let (fb, gb) = field(b, *p);
             // distance to the bisector, to first order
             let off = (fa - fb).abs() / (ga + gb).max(1e-3);
-            assert!(off < sc.epsilon, "edge {a}-{b} point {p:?} is {off} off");
+            assert!(off < sc.epsilon(), "edge {a}-{b} point {p:?} is {off} off");
             for k in 0..4 {
                 let (fk, _) = field(k, *p);
                 assert!(
-                    fk >= fa.min(fb) - 2.0 * sc.epsilon,
+                    fk >= fa.min(fb) - 2.0 * sc.epsilon(),
                     "site {k} nearer at {p:?}"
                 );
             }
@@ -549,10 +547,7 @@ fn cubic_implicit_field_edges_lie_on_the_bisectors() {
 fn refusals_name_the_site_and_equation_and_never_panic() {
     let dom = Aabb::from_array([-1.0, -1.0, 1.0, 1.0]);
     let no_z = SiteKind::ImplicitField {
-        equation: Equation {
-            text: "x^2 + y^2".into(),
-            poly: Poly::parse("x^2 + y^2", &['x', 'y', 'z']).unwrap(),
-        },
+        equation: Equation::parse("x^2 + y^2", &['x', 'y', 'z']).unwrap(),
     };
     let e = SiteField::from_site(3, &no_z, &dom)
         .unwrap_err()
@@ -594,7 +589,7 @@ fn check_box(f: &SiteField, b: &Aabb, samples: &[(f64, f64)], lipschitz: bool) {
         );
         if let Some(g) = g {
             let gq = f.gradient(q);
-            let ok = |i: gvd::num::Interval, x: f64| i.lo - 1e-6 <= x && x <= i.hi + 1e-6;
+            let ok = |i: gvd::internals::Interval, x: f64| i.lo - 1e-6 <= x && x <= i.hi + 1e-6;
             // the closed form may be evaluated just inside a closed site's boundary
             if val > 1e-6 || !lipschitz {
                 assert!(

@@ -4,7 +4,7 @@
 
 use gvd::complex::{Generator, VoronoiComplex};
 use gvd::geom::{Aabb, Point};
-use gvd::incremental::{points_voronoi, Face, PointDiagram};
+use gvd::internals::{points_voronoi, Face, PointDiagram};
 use proptest::prelude::*;
 use robust::Coord;
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};

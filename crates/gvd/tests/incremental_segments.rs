@@ -39,7 +39,7 @@ fn worst_error(s: &Scene, d: &VoronoiComplex) -> f64 {
             .iter()
             .fold((f64::INFINITY, 0.0f64), |(l, h), &v| (l.min(v), h.max(v)));
         let err = (hi - lo).max(lo - nearest(q));
-        worst = worst.max(err / s.epsilon);
+        worst = worst.max(err / s.epsilon());
     };
     for e in &d.edges {
         for w in e.points.windows(2) {

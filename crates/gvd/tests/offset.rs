@@ -62,7 +62,7 @@ fn sites_distance(scene: &Scene, q: Point, except: usize) -> f64 {
             .fold(f64::INFINITY, f64::min)
     };
     scene
-        .sites
+        .sites()
         .iter()
         .enumerate()
         .filter(|&(i, _)| i != except)
@@ -99,7 +99,7 @@ fn check_samples(scene: &Scene, off: &Offset, tol: f64) {
                     "curve {c}: {q:?} at {dist}, not {d}"
                 );
                 assert!(
-                    scene.domain.outside_distance(q) <= tol,
+                    scene.domain().outside_distance(q) <= tol,
                     "curve {c}: {q:?} outside"
                 );
             }
@@ -116,10 +116,10 @@ fn check_samples(scene: &Scene, off: &Offset, tol: f64) {
         } else {
             for e in [first, last] {
                 assert!(
-                    scene.domain.outside_distance(e) == 0.0,
+                    scene.domain().outside_distance(e) == 0.0,
                     "curve {c} ends at {e:?}"
                 );
-                let b = scene.domain;
+                let b = scene.domain();
                 let edge = [e.x - b.min.x, b.max.x - e.x, e.y - b.min.y, b.max.y - e.y];
                 assert!(
                     edge.iter().any(|v| v.abs() <= tol),
@@ -266,7 +266,7 @@ fn random_points_against_brute_force() {
                     .filter(|&(j, _)| j != i)
                     .map(|(_, o)| q.dist(*o))
                     .fold(f64::INFINITY, f64::min);
-                if others > d + 1e-6 && scene.domain.contains(q) {
+                if others > d + 1e-6 && scene.domain().contains(q) {
                     tested += 1;
                     assert!(covered(&off, q, 1e-9), "d {d}: {q:?} of site {i} missed");
                 }
@@ -499,7 +499,7 @@ fn shipped_pocket_against_brute_force() {
         match offset_scene(&scene, d, &Options::default()) {
             Ok((off, _)) => {
                 assert!(!off.curves.is_empty());
-                check_samples(&scene, &off, 10.0 * scene.epsilon);
+                check_samples(&scene, &off, 10.0 * scene.epsilon());
             }
             Err(gvd::Error::Unsupported { .. }) => {
                 eprintln!("pocket: polygons are not computed yet, skipped");
@@ -522,7 +522,7 @@ fn true_offset_candidates(scene: &Scene, i: usize, d: f64) -> Vec<Point> {
             })
             .collect::<Vec<_>>()
     };
-    match scene.sites[i].kind {
+    match scene.sites()[i].kind {
         SiteKind::Point { at, .. } => circle(at, d, 0.0, TAU, 90),
         SiteKind::Segment { from, to } => {
             let n = (to - from).perp() * (d / from.dist(to));
@@ -562,15 +562,15 @@ fn true_offset_candidates(scene: &Scene, i: usize, d: f64) -> Vec<Point> {
 fn check_complete(scene: &Scene, off: &Offset, tol: f64) -> usize {
     let d = off.distance;
     let mut tested = 0;
-    for i in 0..scene.sites.len() {
+    for i in 0..scene.sites().len() {
         for q in true_offset_candidates(scene, i, d) {
             let own = site_distance(scene, q);
-            let inside = scene.domain.outside_distance(q) == 0.0
+            let inside = scene.domain().outside_distance(q) == 0.0
                 && [
-                    q.x - scene.domain.min.x,
-                    scene.domain.max.x - q.x,
-                    q.y - scene.domain.min.y,
-                    scene.domain.max.y - q.y,
+                    q.x - scene.domain().min.x,
+                    scene.domain().max.x - q.x,
+                    q.y - scene.domain().min.y,
+                    scene.domain().max.y - q.y,
                 ]
                 .iter()
                 .all(|&m| m > 1e-6);
@@ -592,15 +592,16 @@ fn check_complete(scene: &Scene, off: &Offset, tol: f64) -> usize {
 /// JSON numbers with round-trip digits are not always read back to the bits written
 /// (`0.19866933079506122` reads as `0.1986693307950612`).
 fn scene_of(domain: [f64; 4], mode: Mode, sites: Vec<SiteKind>) -> Scene {
-    Scene {
-        domain: gvd::geom::Aabb::from_array(domain),
-        epsilon: 0.001,
+    Scene::new(
+        gvd::geom::Aabb::from_array(domain),
+        0.001,
         mode,
-        sites: sites
+        sites
             .into_iter()
             .map(|kind| Site { id: None, kind })
             .collect(),
-    }
+    )
+    .expect("a valid scene")
 }
 
 fn arc_site(center: Point, radius: f64, start_angle: f64, end_angle: f64) -> SiteKind {

@@ -2,18 +2,18 @@
 //! the generic `cells::build_cells` on the same edges and against the exact clipped
 //! cells (Sutherland–Hodgman), on ordinary and degenerate scenes.
 
-use gvd::cells::build_cells;
 use gvd::complex::Cell;
 use gvd::geom::{Aabb, Point};
+use gvd::internals::build_cells;
 use gvd::scene::{Metric, Mode, Site, SiteKind};
 use gvd::{compute, Options, Scene};
 
 fn scene(domain: Aabb, points: &[Point]) -> Scene {
-    Scene {
+    Scene::new(
         domain,
-        epsilon: 1e-4,
-        mode: Mode::Voronoi,
-        sites: points
+        1e-4,
+        Mode::Voronoi,
+        points
             .iter()
             .map(|&at| Site {
                 id: None,
@@ -23,7 +23,8 @@ fn scene(domain: Aabb, points: &[Point]) -> Scene {
                 },
             })
             .collect(),
-    }
+    )
+    .expect("a valid scene")
 }
 
 fn signed_area(ring: &[Point]) -> f64 {
@@ -262,15 +263,21 @@ fn collinear_points() {
 }
 
 #[test]
-fn duplicate_points() {
+fn duplicate_points_are_refused_naming_the_later_copy() {
     let mut pts = random_points(100, 5, 0.0, 1.0);
-    pts.extend_from_within(10..30);
-    pts.insert(0, pts[50]);
-    let cells = check("duplicates", UNIT, &pts);
-    // The copy with the least index owns the cell.
-    assert!(cells.iter().any(|c| c.site == 0));
-    assert!(cells.iter().all(|c| c.site != 51 && c.site < 101));
-    check("all the same point", UNIT, &[Point::new(0.3, 0.4); 5]);
+    pts.insert(40, pts[7]);
+    let sites = pts.iter().map(|&at| Site::point(at)).collect();
+    match Scene::new(UNIT, 1e-4, Mode::Voronoi, sites) {
+        Err(gvd::Error::Site {
+            site,
+            field,
+            message,
+        }) => {
+            assert_eq!((site, field.as_str()), (40, "at"));
+            assert!(message.contains("duplicate of site 7"), "{message}");
+        }
+        other => panic!("expected a refusal, got {other:?}"),
+    }
 }
 
 #[test]

@@ -26,11 +26,11 @@ impl Rng {
 }
 
 fn scene(points: &[(Point, Metric)], eps: f64) -> Scene {
-    Scene {
-        domain: Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
-        epsilon: eps,
-        mode: Mode::Voronoi,
-        sites: points
+    Scene::new(
+        Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
+        eps,
+        Mode::Voronoi,
+        points
             .iter()
             .map(|(at, m)| Site {
                 id: None,
@@ -40,7 +40,8 @@ fn scene(points: &[(Point, Metric)], eps: f64) -> Scene {
                 },
             })
             .collect(),
-    }
+    )
+    .expect("a valid scene")
 }
 
 /// An exact vertex: its location and sorted generators.
@@ -173,15 +174,15 @@ fn output_sets(d: &gvd::VoronoiComplex) -> (Vec<ExactVertex>, BTreeSet<[usize; 2
 fn assert_matches(sc: &Scene, exact_v: &[ExactVertex], exact_pairs: &[([usize; 2], f64)]) {
     let d = gvd::compute(sc, &subdivision()).unwrap();
     d.check_invariants().unwrap();
-    let eps = sc.epsilon;
+    let eps = sc.epsilon();
     let (out_v, out_pairs) = output_sets(&d);
     for (p, s) in exact_v {
-        if sc.domain.outside_distance(*p) == 0.0
+        if sc.domain().outside_distance(*p) == 0.0
             && [
-                p.x - sc.domain.min.x,
-                sc.domain.max.x - p.x,
-                p.y - sc.domain.min.y,
-                sc.domain.max.y - p.y,
+                p.x - sc.domain().min.x,
+                sc.domain().max.x - p.x,
+                p.y - sc.domain().min.y,
+                sc.domain().max.y - p.y,
             ]
             .iter()
             .all(|m| *m > eps)
@@ -222,7 +223,7 @@ fn check_euclidean(points: &[Point], eps: f64) {
             .collect::<Vec<_>>(),
         eps,
     );
-    let (v, p) = delaunay_reference(points, &sc.domain);
+    let (v, p) = delaunay_reference(points, &sc.domain());
     assert_matches(&sc, &v, &p);
 }
 
@@ -319,14 +320,14 @@ fn random_power_points_match_brute_force() {
             .collect::<Vec<_>>(),
         1e-3,
     );
-    let exact = power_reference(&pts, &w, &sc.domain);
+    let exact = power_reference(&pts, &w, &sc.domain());
     let d = gvd::compute(&sc, &subdivision()).unwrap();
     let (out_v, _) = output_sets(&d);
     for (p, s) in &exact {
         assert!(
             out_v
                 .iter()
-                .any(|(q, t)| t == s && q.dist(*p) <= sc.epsilon),
+                .any(|(q, t)| t == s && q.dist(*p) <= sc.epsilon()),
             "power vertex {s:?} at {p:?} missing"
         );
     }
@@ -334,7 +335,7 @@ fn random_power_points_match_brute_force() {
         assert!(
             exact
                 .iter()
-                .any(|(p, s)| s == t && q.dist(*p) <= sc.epsilon),
+                .any(|(p, s)| s == t && q.dist(*p) <= sc.epsilon()),
             "output vertex {t:?} at {q:?} is not a power vertex"
         );
     }

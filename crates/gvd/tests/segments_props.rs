@@ -49,7 +49,7 @@ fn worst_error(s: &Scene, d: &VoronoiComplex) -> (f64, String) {
         let (lo, hi) = ds
             .iter()
             .fold((f64::INFINITY, 0.0f64), |(l, h), &v| (l.min(v), h.max(v)));
-        let err = (hi - lo).max(lo - nearest(q)) / s.epsilon;
+        let err = (hi - lo).max(lo - nearest(q)) / s.epsilon();
         if err > worst.0 {
             worst = (err, format!("{what} at ({}, {}) of {gens:?}", q.x, q.y));
         }
@@ -73,8 +73,8 @@ fn structure(s: &Scene, d: &VoronoiComplex) -> Result<(), String> {
     d.check_invariants()?;
     // Edge ends and vertices are computed separately (bisection along the bisector);
     // they agree to about 1e-9 of the domain, far below epsilon.
-    let tol = 1e-3 * s.epsilon;
-    let dom = s.domain;
+    let tol = 1e-3 * s.epsilon();
+    let dom = s.domain();
     let on_boundary = |p: Point| {
         let m = [
             (p.x - dom.min.x).abs(),
@@ -116,7 +116,7 @@ fn structure(s: &Scene, d: &VoronoiComplex) -> Result<(), String> {
 /// Whether two different sites share a point (then `gvd::verify` does not apply).
 fn shares_points_between_sites(s: &Scene) -> bool {
     let mut seen: std::collections::HashMap<(u64, u64), usize> = Default::default();
-    for (i, site) in s.sites.iter().enumerate() {
+    for (i, site) in s.sites().iter().enumerate() {
         let (pts, _) = features(&site.kind);
         for p in pts {
             let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
@@ -152,14 +152,14 @@ fn incremental(s: &Scene) -> Result<VoronoiComplex, Error> {
 /// Every check of the module doc on one scene; the scene's JSON is in the message.
 fn check_scene(s: &Scene) -> Result<(), String> {
     let ctx = || {
-        let sites: Vec<String> = s.sites.iter().map(|x| format!("{:?}", x.kind)).collect();
-        format!("mode {:?}, sites {}", s.mode, sites.join("; "))
+        let sites: Vec<String> = s.sites().iter().map(|x| format!("{:?}", x.kind)).collect();
+        format!("mode {:?}, sites {}", s.mode(), sites.join("; "))
     };
     let d = incremental(s).map_err(|e| format!("refused: {e} ({})", ctx()))?;
     structure(s, &d).map_err(|e| format!("structure: {e} ({})", ctx()))?;
     // One site alone has no edges in `voronoi` mode, nor a convex polygon in `complex`
     // mode (only separators outside it); a medial axis or two sites always do.
-    if d.edges.is_empty() && (s.sites.len() >= 2 || s.mode == Mode::MedialAxis) {
+    if d.edges.is_empty() && (s.sites().len() >= 2 || s.mode() == Mode::MedialAxis) {
         return Err(format!("no edges ({})", ctx()));
     }
     let (err, at) = worst_error(s, &d);

@@ -123,10 +123,7 @@ fn epsilon_below_f64_resolution_is_floored_not_hung() {
     let d = compute(&sc, &Options::default()).unwrap();
     d.check_invariants().unwrap();
     assert!(d.stats["resolution"].as_f64().unwrap() > 1e-9);
-    let coarse = Scene {
-        epsilon: 1e-4,
-        ..sc.clone()
-    };
+    let coarse = Scene::new(sc.domain(), 1e-4, sc.mode(), sc.sites().to_vec()).unwrap();
     let report = verify(
         &coarse,
         &d,

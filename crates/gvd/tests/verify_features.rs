@@ -76,7 +76,7 @@ fn move_busiest_vertex(s: &Scene, d: &mut VoronoiComplex) {
         }
     }
     let v = (0..degree.len()).max_by_key(|&v| degree[v]).unwrap();
-    let shift = Point::new(10.0 * s.epsilon, 0.0);
+    let shift = Point::new(10.0 * s.epsilon(), 0.0);
     d.vertices[v].at = d.vertices[v].at + shift;
     for e in &mut d.edges {
         let n = e.points.len();
@@ -219,17 +219,18 @@ fn edge_gen(site: usize, index: usize) -> Generator {
 /// four corner bisectors and the middle segment between the long edges.
 fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
     let p = Point::new;
-    let s = Scene {
-        domain: Aabb::from_array([-3.0, -1.0, 3.0, 1.0]),
-        epsilon: 1e-3,
-        mode: Mode::MedialAxis,
-        sites: vec![Site {
+    let s = Scene::new(
+        Aabb::from_array([-3.0, -1.0, 3.0, 1.0]),
+        1e-3,
+        Mode::MedialAxis,
+        vec![Site {
             id: None,
             kind: SiteKind::Polygon {
                 rings: vec![vec![p(-1.0, -0.5), p(1.0, -0.5), p(1.0, 0.5), p(-1.0, 0.5)]],
             },
         }],
-    };
+    )
+    .expect("a valid scene");
     // edges: 0 bottom, 1 right, 2 top, 3 left
     let (v0, v1) = (p(-0.5, 0.0), p(0.5, 0.0));
     let d = VoronoiComplex {
@@ -310,8 +311,8 @@ fn medial_axis_outside_the_region_and_zone_boundaries_fail() {
     );
     // complex mode outside the rectangle: the zone boundary of corner 1 and the bottom
     // edge (the vertical ray down from (1, −0.5)) is not a Voronoi edge
-    let (mut s, _) = rectangle_medial_axis();
-    s.mode = Mode::Complex;
+    let (s, _) = rectangle_medial_axis();
+    let s = s.with_mode(Mode::Complex);
     let d = VoronoiComplex {
         edges: vec![Edge {
             sites: [corner(0, 1), edge_gen(0, 0)],
@@ -357,11 +358,11 @@ fn labels_must_fit_the_mode() {
 #[test]
 fn narrow_corner_wedges_are_not_missing_edges() {
     let p = Point::new;
-    let s = Scene {
-        domain: Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
-        epsilon: 1e-3,
-        mode: Mode::Complex,
-        sites: vec![Site {
+    let s = Scene::new(
+        Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
+        1e-3,
+        Mode::Complex,
+        vec![Site {
             id: None,
             kind: SiteKind::Polygon {
                 rings: vec![vec![
@@ -374,7 +375,8 @@ fn narrow_corner_wedges_are_not_missing_edges() {
                 ]],
             },
         }],
-    };
+    )
+    .expect("a valid scene");
     for grid in [128, 512] {
         let opts = VerifyOptions {
             grid,

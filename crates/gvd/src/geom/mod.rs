@@ -1,10 +1,13 @@
-//! Plain geometric value types: points and axis-aligned boxes.
+//! Plane geometry: points, axis-aligned boxes, and the shared geometric modules
+//! (exact predicates, arcs, rings, rational Bézier curves, bucket grids).
 
+pub mod arc;
+pub mod bezier;
 mod nearest;
+pub mod predicates;
+pub mod ring;
 
 pub use nearest::PointGrid;
-
-use crate::num::interval::Interval;
 use serde::{Deserialize, Serialize};
 use std::ops::{Add, Mul, Sub};
 
@@ -12,7 +15,9 @@ use std::ops::{Add, Mul, Sub};
 #[derive(Clone, Copy, PartialEq, Debug, Default, Serialize, Deserialize)]
 #[serde(from = "[f64; 2]", into = "[f64; 2]")]
 pub struct Point {
+    /// The x coordinate.
     pub x: f64,
+    /// The y coordinate.
     pub y: f64,
 }
 
@@ -30,10 +35,12 @@ impl From<Point> for [f64; 2] {
 
 impl Point {
     #[inline]
+    /// The point `(x, y)`.
     pub const fn new(x: f64, y: f64) -> Self {
         Point { x, y }
     }
     #[inline]
+    /// The dot product.
     pub fn dot(self, o: Point) -> f64 {
         self.x * o.x + self.y * o.y
     }
@@ -48,6 +55,7 @@ impl Point {
         (self.x * self.x + self.y * self.y).sqrt()
     }
     #[inline]
+    /// The Euclidean distance to `o`.
     pub fn dist(self, o: Point) -> f64 {
         (self - o).norm()
     }
@@ -63,10 +71,12 @@ impl Point {
         Point::new(-self.y, self.x)
     }
     #[inline]
+    /// The point `self + t (o − self)`.
     pub fn lerp(self, o: Point, t: f64) -> Point {
         Point::new(self.x + (o.x - self.x) * t, self.y + (o.y - self.y) * t)
     }
     #[inline]
+    /// The coordinate along `axis`.
     pub fn coord(self, axis: Axis) -> f64 {
         match axis {
             Axis::X => self.x,
@@ -119,19 +129,24 @@ pub fn segment_distance(q: Point, a: Point, b: Point) -> f64 {
 /// A coordinate axis.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
 pub enum Axis {
+    /// The x axis.
     X,
+    /// The y axis.
     Y,
 }
 
 /// A closed axis-aligned box `[min.x, max.x] × [min.y, max.y]`.
 #[derive(Clone, Copy, PartialEq, Debug)]
 pub struct Aabb {
+    /// The lower-left corner.
     pub min: Point,
+    /// The upper-right corner.
     pub max: Point,
 }
 
 impl Aabb {
     #[inline]
+    /// The box between two corners (`min ≤ max` componentwise).
     pub const fn new(min: Point, max: Point) -> Self {
         Aabb { min, max }
     }
@@ -139,34 +154,32 @@ impl Aabb {
     pub fn from_array(a: [f64; 4]) -> Self {
         Aabb::new(Point::new(a[0], a[1]), Point::new(a[2], a[3]))
     }
+    /// `[xmin, ymin, xmax, ymax]`.
     pub fn to_array(self) -> [f64; 4] {
         [self.min.x, self.min.y, self.max.x, self.max.y]
     }
     #[inline]
+    /// The extent along x.
     pub fn width(&self) -> f64 {
         self.max.x - self.min.x
     }
     #[inline]
+    /// The extent along y.
     pub fn height(&self) -> f64 {
         self.max.y - self.min.y
     }
     #[inline]
+    /// The larger of width and height.
     pub fn longest_side(&self) -> f64 {
         self.width().max(self.height())
     }
     #[inline]
+    /// The centre.
     pub fn center(&self) -> Point {
         self.min.lerp(self.max, 0.5)
     }
     #[inline]
-    pub fn x(&self) -> Interval {
-        Interval::new(self.min.x, self.max.x)
-    }
-    #[inline]
-    pub fn y(&self) -> Interval {
-        Interval::new(self.min.y, self.max.y)
-    }
-    #[inline]
+    /// Whether `p` lies in the closed box.
     pub fn contains(&self, p: Point) -> bool {
         self.min.x <= p.x && p.x <= self.max.x && self.min.y <= p.y && p.y <= self.max.y
     }

@@ -12,6 +12,7 @@ pub struct PointGrid<'a> {
 }
 
 impl<'a> PointGrid<'a> {
+    /// Buckets `points` in a grid of about one point per cell.
     pub fn new(points: &'a [Point]) -> Self {
         let mut bounds = Aabb::new(
             Point::new(f64::MAX, f64::MAX),

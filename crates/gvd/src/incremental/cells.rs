@@ -5,6 +5,7 @@
 
 use super::PointDiagram;
 use crate::complex::{smallvec, Cell};
+use crate::geom::ring::signed_area;
 use crate::geom::{Aabb, Point};
 use crate::par::map_range;
 
@@ -195,11 +196,4 @@ impl Frame {
         }
         Ok(())
     }
-}
-
-pub(super) fn signed_area(ring: &[Point]) -> f64 {
-    let n = ring.len();
-    0.5 * (0..n)
-        .map(|i| ring[i].cross(ring[(i + 1) % n]))
-        .sum::<f64>()
 }

@@ -22,11 +22,11 @@ mod assembly;
 
 use super::offset_form::{self, OffsetGen};
 use super::phases::Phases;
-use super::rescale;
 use super::segments::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
+use crate::geom::arc::partial_sweep;
 use crate::geom::Point;
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
@@ -36,7 +36,7 @@ use rustc_hash::FxHashMap;
 /// Whether every site is a Euclidean point, a segment, an arc short of a full circle, a
 /// polyline or a polygon.
 pub fn supports(scene: &Scene) -> bool {
-    scene.sites.iter().all(|s| supports_site(&s.kind))
+    scene.sites().iter().all(|s| supports_site(&s.kind))
 }
 
 /// Whether a site of this kind goes through the segment engine.
@@ -46,7 +46,7 @@ pub fn supports_site(kind: &SiteKind) -> bool {
             start_angle,
             end_angle,
             ..
-        } => arc_span(*start_angle, *end_angle).is_some(),
+        } => partial_sweep(*start_angle, *end_angle).is_some(),
         kind => matches!(
             kind,
             SiteKind::Point {
@@ -57,13 +57,6 @@ pub fn supports_site(kind: &SiteKind) -> bool {
                 | SiteKind::Polygon { .. }
         ),
     }
-}
-
-/// The counter-clockwise span from `start` to `end` in `(0, 2π)`, or `None` for a full
-/// circle (the shared checker's rule: a span within 1e-12 of zero or 2π is a circle).
-pub(crate) fn arc_span(start: f64, end: f64) -> Option<f64> {
-    let span = (end - start).rem_euclid(std::f64::consts::TAU);
-    (span > 1e-12 && span < std::f64::consts::TAU - 1e-12).then_some(span)
 }
 
 /// The generators of a scene and what they stand for.
@@ -107,7 +100,7 @@ impl Generators {
         };
         // Room for every point of every site (shared ones are counted once each).
         let most: usize = scene
-            .sites
+            .sites()
             .iter()
             .map(|s| match &s.kind {
                 SiteKind::Polyline { points } => points.len(),
@@ -157,7 +150,7 @@ impl Generators {
         };
         let mut points_sites = Vec::new();
         let mut arc_sites = Vec::new();
-        for (i, site) in scene.sites.iter().enumerate() {
+        for (i, site) in scene.sites().iter().enumerate() {
             match &site.kind {
                 SiteKind::Point { at, .. } => points_sites.push((i, *at)),
                 SiteKind::Segment { from, to } => chain(&mut g, i, 0, &[*from, *to], false),
@@ -168,7 +161,7 @@ impl Generators {
                     start_angle,
                     end_angle,
                 } => {
-                    if let Some(span) = arc_span(start_angle, end_angle) {
+                    if let Some(span) = partial_sweep(start_angle, end_angle) {
                         let arc = ArcSpec {
                             c: center,
                             r: radius,
@@ -194,7 +187,7 @@ impl Generators {
         // segment's or another arc's end by an ulp: within 1e-12 of the domain they are
         // that point. A point shared by several sites is named by the first of them in
         // the scene.
-        let mut snap = Snap::new(1e-12 * scene.domain.longest_side());
+        let mut snap = Snap::new(1e-12 * scene.domain().longest_side());
         if !arc_sites.is_empty() {
             snap.insert_all(&g.points);
         }
@@ -531,9 +524,9 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
 /// with `bisectors`, every edge also carries its exact bisector in offset-parameter
 /// form ([`Edge::bisector`]).
 pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, Error> {
-    if let Some(s) = rescale::factor(scene) {
-        let mut c = linear_voronoi(&rescale::scene(scene, s), bisectors)?;
-        rescale::unscale(&mut c, s);
+    if let Some(s) = scene.unit_scale() {
+        let mut c = linear_voronoi(&scene.scaled(s), bisectors)?;
+        c.scale(1.0 / s);
         return Ok(c);
     }
     let mut phases = Phases::default();
@@ -541,12 +534,12 @@ pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, 
     if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely) {
         return Err(conflict_error(&g, c));
     }
-    let scale = scene.domain.longest_side();
+    let scale = scene.domain().longest_side();
     if let Some(c) = find_arc_conflict(&g.points, &g.segments, &g.arcs, &g.lonely, scale) {
         return Err(arc_conflict_error(&g, c));
     }
     phases.end("input");
-    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain)?;
+    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain())?;
     phases.end("construction");
     let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases)?;
     phases.end("assembly");

@@ -34,7 +34,6 @@ mod order;
 mod output;
 mod phases;
 mod predicates;
-pub(crate) mod rescale;
 mod segments;
 
 use crate::complex::VoronoiComplex;

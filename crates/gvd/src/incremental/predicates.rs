@@ -4,21 +4,8 @@
 //! to *rank* candidates are plain f64 estimates, and the circumcentre is a stable f64
 //! construction.
 
+pub(crate) use crate::geom::predicates::incircle;
 use crate::geom::Point;
-use robust::Coord;
-
-#[inline]
-fn coord(p: Point) -> Coord<f64> {
-    Coord { x: p.x, y: p.y }
-}
-
-/// The incircle determinant `det[[a−d, |a−d|²], [b−d, |b−d|²], [c−d, |c−d|²]]`, exact
-/// sign: for counter-clockwise `a, b, c` it is > 0 iff `d` lies strictly inside their
-/// circumcircle. The topology-oriented `H(a, b, c, d)` is its negation.
-#[inline]
-pub(crate) fn incircle(a: Point, b: Point, c: Point, d: Point) -> f64 {
-    robust::incircle(coord(a), coord(b), coord(c), coord(d))
-}
 
 /// An f64 estimate of the power of `d` with respect to the circumcircle of `a, b, c`,
 /// `|d − o|² − r² = −incircle(a, b, c, d) / orient(a, b, c)`: a scale-aware `H` used

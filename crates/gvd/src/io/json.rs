@@ -6,7 +6,7 @@ use crate::geom::Point;
 
 /// Reads a diagram. Refuses invalid JSON, missing or mistyped required fields and
 /// non-finite coordinates with [`Error::Diagram`]; structural consistency (indices,
-/// end points) is left to [`crate::verify`], which reports it per edge.
+/// end points) is left to [`crate::verify()`], which reports it per edge.
 pub fn read_diagram(text: &str) -> Result<VoronoiComplex, Error> {
     let d: VoronoiComplex =
         serde_json::from_str(text).map_err(|e| Error::Diagram(e.to_string()))?;

@@ -5,6 +5,7 @@
 //! platforms.
 
 use crate::complex::VoronoiComplex;
+use crate::geom::bezier::RationalBezier;
 use crate::geom::{Aabb, Point};
 use crate::offset::{Curve, Offset, Primitive};
 use crate::scene::{Scene, SiteKind};
@@ -104,35 +105,6 @@ fn box_colour(n: usize) -> &'static str {
     }
 }
 
-/// Points along a (rational) Bézier curve by de Casteljau's algorithm in homogeneous
-/// coordinates.
-fn bezier_points(cp: &[Point], w: Option<&[f64]>, n: usize) -> Vec<Point> {
-    (0..=n)
-        .map(|k| {
-            let t = k as f64 / n as f64;
-            let mut h: Vec<(f64, f64, f64)> = cp
-                .iter()
-                .enumerate()
-                .map(|(i, p)| {
-                    let wi = w.and_then(|w| w.get(i)).copied().unwrap_or(1.0);
-                    (p.x * wi, p.y * wi, wi)
-                })
-                .collect();
-            for r in 1..h.len() {
-                for i in 0..h.len() - r {
-                    let (a, b) = (h[i], h[i + 1]);
-                    h[i] = (
-                        a.0 + (b.0 - a.0) * t,
-                        a.1 + (b.1 - a.1) * t,
-                        a.2 + (b.2 - a.2) * t,
-                    );
-                }
-            }
-            Point::new(h[0].0 / h[0].2, h[0].1 / h[0].2)
-        })
-        .collect()
-}
-
 /// Renders the diagram of `scene` as an SVG document.
 pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) -> String {
     let (mut s, f, size) = open_svg(scene, opts);
@@ -164,7 +136,7 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
     write_sites(&mut s, scene, &f, size);
     let t_max = write_edges(&mut s, diagram, &f, "#2b6cb0", &sw(0.0025));
     if t_max > 0.0 {
-        write_clearance_legend(&mut s, scene.domain, &f, t_max);
+        write_clearance_legend(&mut s, scene.domain(), &f, t_max);
     }
     let _ = writeln!(s, "<g id=\"vertices\" fill=\"#d32f2f\">");
     for v in &diagram.vertices {
@@ -250,7 +222,7 @@ fn curve_path(f: &Fmt, curve: &Curve) -> String {
 /// The SVG element with its view box, and the white background; the number format and
 /// the domain's longest side (line widths are fractions of it).
 fn open_svg(scene: &Scene, opts: &SvgOptions) -> (String, Fmt, f64) {
-    let dom = scene.domain;
+    let dom = scene.domain();
     let size = dom.longest_side();
     let f = Fmt {
         decimals: (5 - size.log10().floor() as i64).clamp(0, 15) as usize,
@@ -285,7 +257,7 @@ fn write_domain(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
     let _ = writeln!(
         s,
         "<rect id=\"domain\" {} fill=\"none\" stroke=\"#555555\" stroke-width=\"{}\"/>",
-        f.rect(scene.domain),
+        f.rect(scene.domain()),
         f.num(0.002 * size)
     );
 }
@@ -411,7 +383,7 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
         f.path(&mut d, pts, close);
         let _ = writeln!(s, "<path d=\"{d}\"{extra}/>");
     };
-    for site in &scene.sites {
+    for site in scene.sites() {
         match &site.kind {
             SiteKind::Point { at, .. } => {
                 let _ = writeln!(
@@ -452,7 +424,7 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
                 start_angle,
                 end_angle,
             } => {
-                let sweep = crate::scene::arc_sweep(*start_angle, *end_angle);
+                let sweep = crate::geom::arc::sweep(*start_angle, *end_angle);
                 let pts: Vec<Point> = (0..=64)
                     .map(|k| {
                         let a = start_angle + sweep * k as f64 / 64.0;
@@ -477,7 +449,7 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
                 weights,
             } => stroke(
                 s,
-                &bezier_points(control_points, weights.as_deref(), 64),
+                &RationalBezier::new(control_points, weights.as_deref()).sample(64),
                 false,
                 "",
             ),
@@ -527,11 +499,11 @@ mod tests {
     fn well_formed_and_deterministic() {
         let site = |kind| Site { id: None, kind };
         let p = |x, y| Point::new(x, y);
-        let scene = Scene {
-            domain: Aabb::from_array([-2.0, -1.0, 2.0, 1.0]),
-            epsilon: 1e-3,
-            mode: Mode::Voronoi,
-            sites: vec![
+        let scene = Scene::new(
+            Aabb::from_array([-2.0, -1.0, 2.0, 1.0]),
+            1e-3,
+            Mode::Voronoi,
+            vec![
                 site(SiteKind::Point {
                     at: p(-1.0, 0.0),
                     metric: Metric::Euclidean,
@@ -556,7 +528,8 @@ mod tests {
                     weights: None,
                 }),
             ],
-        };
+        )
+        .expect("a valid scene");
         let g = Generator::Site;
         let diagram = VoronoiComplex {
             vertices: vec![Vertex {

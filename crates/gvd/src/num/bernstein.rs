@@ -37,8 +37,11 @@ pub struct Bernstein1 {
 /// `i·(deg[1]+1) + j` (`i` along x / `u`, `j` along y / `v`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bernstein2 {
+    /// The degrees in x and y.
     pub deg: [usize; 2],
+    /// The coefficients, x-major.
     pub coef: Vec<f64>,
+    /// A bound on the rounding error of every coefficient.
     pub err: f64,
 }
 
@@ -46,8 +49,11 @@ pub struct Bernstein2 {
 /// `(i, j, k)` is at `(i·(deg[1]+1) + j)·(deg[2]+1) + k`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bernstein3 {
+    /// The degrees in x, y and z.
     pub deg: [usize; 3],
+    /// The coefficients, x-major.
     pub coef: Vec<f64>,
+    /// A bound on the rounding error of every coefficient.
     pub err: f64,
 }
 
@@ -568,14 +574,17 @@ impl Bernstein1 {
         Self::from_form(self.view().elevate([to, 0, 0]))
     }
 
+    /// The sum.
     pub fn add(&self, o: &Self) -> Self {
         Self::from_form(self.view().add(o.view(), 1.0))
     }
 
+    /// The difference.
     pub fn sub(&self, o: &Self) -> Self {
         Self::from_form(self.view().add(o.view(), -1.0))
     }
 
+    /// The product (degrees add).
     pub fn mul(&self, o: &Self) -> Self {
         Self::from_form(self.view().mul(o.view()))
     }
@@ -747,14 +756,17 @@ impl Bernstein2 {
         Self::from_form(self.view().elevate([to[0], to[1], 0]))
     }
 
+    /// The sum.
     pub fn add(&self, o: &Self) -> Self {
         Self::from_form(self.view().add(o.view(), 1.0))
     }
 
+    /// The difference.
     pub fn sub(&self, o: &Self) -> Self {
         Self::from_form(self.view().add(o.view(), -1.0))
     }
 
+    /// The product (degrees add).
     pub fn mul(&self, o: &Self) -> Self {
         Self::from_form(self.view().mul(o.view()))
     }
@@ -831,14 +843,17 @@ impl Bernstein3 {
         Self::from_form(self.view().elevate(to))
     }
 
+    /// The sum.
     pub fn add(&self, o: &Self) -> Self {
         Self::from_form(self.view().add(o.view(), 1.0))
     }
 
+    /// The difference.
     pub fn sub(&self, o: &Self) -> Self {
         Self::from_form(self.view().add(o.view(), -1.0))
     }
 
+    /// The product (degrees add).
     pub fn mul(&self, o: &Self) -> Self {
         Self::from_form(self.view().mul(o.view()))
     }

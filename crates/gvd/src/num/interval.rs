@@ -23,7 +23,9 @@ pub fn round_up(x: f64) -> f64 {
 /// A closed interval `[lo, hi]` of reals, `lo <= hi` (or empty-free by construction).
 #[derive(Clone, Copy, PartialEq, Debug, Default)]
 pub struct Interval {
+    /// The lower end.
     pub lo: f64,
+    /// The upper end.
     pub hi: f64,
 }
 
@@ -53,16 +55,19 @@ impl Interval {
     }
 
     #[inline]
+    /// `hi − lo`.
     pub fn width(self) -> f64 {
         self.hi - self.lo
     }
 
     #[inline]
+    /// The midpoint.
     pub fn mid(self) -> f64 {
         0.5 * (self.lo + self.hi)
     }
 
     #[inline]
+    /// Whether `x` lies in the closed interval.
     pub fn contains(self, x: f64) -> bool {
         self.lo <= x && x <= self.hi
     }
@@ -228,6 +233,20 @@ impl Sub<f64> for Interval {
 impl fmt::Display for Interval {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "[{}, {}]", self.lo, self.hi)
+    }
+}
+
+/// A box's coordinate ranges as intervals (here, so that `geom` needs nothing of `num`).
+impl crate::geom::Aabb {
+    /// The box's range of `x`.
+    #[inline]
+    pub fn x(&self) -> Interval {
+        Interval::new(self.min.x, self.max.x)
+    }
+    /// The box's range of `y`.
+    #[inline]
+    pub fn y(&self) -> Interval {
+        Interval::new(self.min.y, self.max.y)
     }
 }
 

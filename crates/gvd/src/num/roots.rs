@@ -30,7 +30,9 @@ const MIN_UNITS: u64 = 1 << 13;
 /// A parameter interval `[lo, hi] ⊆ [0, 1]` holding roots.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RootInterval {
+    /// The left end.
     pub lo: f64,
+    /// The right end.
     pub hi: f64,
     /// True when exactly one root (simple, in the open interval) is proved; false when
     /// the interval may hold any number of roots, including none.

@@ -4,6 +4,7 @@
 
 use crate::complex::{FeatureKind, Generator};
 use crate::error::Error;
+use crate::geom::ring::even_odd_contains;
 use crate::geom::{segment_distance, Aabb, Point};
 use crate::scene::{Metric, Scene, SiteKind};
 use std::collections::HashMap;
@@ -118,7 +119,7 @@ impl Features {
             sites: Vec::new(),
             polygons: Vec::new(),
         };
-        for (i, site) in scene.sites.iter().enumerate() {
+        for (i, site) in scene.sites().iter().enumerate() {
             match &site.kind {
                 SiteKind::Point {
                     at,
@@ -140,8 +141,7 @@ impl Features {
                     start_angle,
                     end_angle,
                 } => {
-                    let Some(span) = crate::incremental::linear::arc_span(start_angle, end_angle)
-                    else {
+                    let Some(span) = crate::geom::arc::partial_sweep(start_angle, end_angle) else {
                         return Err(Error::Unsupported {
                             site: i,
                             kind: "arc".into(),
@@ -247,7 +247,7 @@ impl Features {
     pub(super) fn inside_region(&self, q: Point) -> bool {
         self.polygons
             .iter()
-            .any(|rings| rings.iter().filter(|r| ray_crosses(r, q)).count() % 2 == 1)
+            .any(|rings| rings.iter().filter(|r| even_odd_contains(r, q)).count() % 2 == 1)
     }
 }
 
@@ -262,21 +262,6 @@ fn ring_chain(rings: &[Vec<Point>]) -> (Vec<Point>, Vec<(usize, usize)>) {
         edges.extend((0..n).map(|k| (o + k, o + (k + 1) % n)));
     }
     (corners, edges)
-}
-
-/// Whether the ray from `q` towards +x crosses the closed ring an odd number of times.
-fn ray_crosses(ring: &[Point], q: Point) -> bool {
-    let mut inside = false;
-    for (k, &a) in ring.iter().enumerate() {
-        let b = ring[(k + 1) % ring.len()];
-        if (a.y > q.y) != (b.y > q.y) {
-            let x = a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y);
-            if q.x < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
 }
 
 /// Features bucketed by their bounding boxes in a uniform grid.

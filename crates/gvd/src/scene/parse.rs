@@ -1,12 +1,12 @@
-//! Scene parsing and validation, by hand from a `serde_json::Value`, so that every refusal
-//! names the site index and the exact field (`SCENE_FORMAT.md`, "Bad input"). Unknown
-//! fields are ignored; an optional field that is `null` counts as absent.
+//! The JSON reader: decodes a `serde_json::Value` by hand, so that every refusal names
+//! the site index and the exact field (`docs/SCENE_FORMAT.md`, "Bad input"), and builds
+//! the scene through [`SceneBuilder`], which checks the values. Unknown fields are
+//! ignored; an optional field that is `null` counts as absent.
 
-use super::validate::{check_rings, duplicate_point};
-use super::{Equation, Metric, Mode, Scene, Site, SiteKind};
+use super::{Equation, Metric, Mode, Scene, SceneBuilder, Site, SiteKind};
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
-use crate::num::poly::{Poly, MAX_DEGREE};
+use crate::num::poly::MAX_DEGREE;
 use serde_json::{Map, Value};
 
 /// The site kinds of the format, in the order of `SCENE_FORMAT.md`.
@@ -29,19 +29,10 @@ pub(super) fn scene_from_value(v: &Value) -> Result<Scene, Error> {
         Some(d) => aabb(d).map_err(|m| Error::scene("domain", m))?,
         None => return Err(Error::scene("domain", "missing required field 'domain'")),
     };
-    let epsilon = match present(obj, "epsilon") {
-        Some(e) => {
-            let e = number(e).map_err(|m| Error::scene("epsilon", m))?;
-            if e <= 0.0 {
-                return Err(Error::scene(
-                    "epsilon",
-                    format!("epsilon must be > 0, found {e}"),
-                ));
-            }
-            e
-        }
-        None => 1e-3 * domain.longest_side(),
-    };
+    let mut scene = SceneBuilder::new(domain)?;
+    if let Some(e) = present(obj, "epsilon") {
+        scene = scene.epsilon(number(e).map_err(|m| Error::scene("epsilon", m))?)?;
+    }
     let mode = match present(obj, "mode") {
         None => Mode::default(),
         Some(Value::String(s)) => match s.as_str() {
@@ -65,6 +56,7 @@ pub(super) fn scene_from_value(v: &Value) -> Result<Scene, Error> {
             ))
         }
     };
+    let mut scene = scene.mode(mode);
     let list = match present(obj, "sites") {
         Some(Value::Array(a)) => a,
         Some(s) => {
@@ -75,20 +67,10 @@ pub(super) fn scene_from_value(v: &Value) -> Result<Scene, Error> {
         }
         None => return Err(Error::scene("sites", "missing required field 'sites'")),
     };
-    let sites = list
-        .iter()
-        .enumerate()
-        .map(|(i, s)| site(i, s))
-        .collect::<Result<Vec<_>, _>>()?;
-    if let Some((i, j)) = duplicate_point(&sites) {
-        return Err(Error::site(i, "at", format!("duplicate of site {j}")));
+    for (i, s) in list.iter().enumerate() {
+        scene.add(site(i, s)?)?;
     }
-    Ok(Scene {
-        domain,
-        epsilon,
-        mode,
-        sites,
-    })
+    scene.build()
 }
 
 /// The fields of site `i`, with errors naming the site and the field.
@@ -118,25 +100,9 @@ impl<'a> Fields<'a> {
             .map(|v| read(v).map_err(|m| self.err(field, m)))
             .transpose()
     }
-    /// A required number satisfying `ok`, else `requirement` (e.g. "radius must be > 0").
-    fn number_where(
-        &self,
-        field: &str,
-        ok: fn(f64) -> bool,
-        requirement: &str,
-    ) -> Result<f64, Error> {
-        let x = self.get(field, number)?;
-        if ok(x) {
-            Ok(x)
-        } else {
-            Err(self.err(field, format!("{requirement}, found {x}")))
-        }
-    }
     fn equation(&self, vars: &[char]) -> Result<Equation, Error> {
         let text = self.get("equation", string)?;
-        let poly = Poly::parse(&text, vars)
-            .map_err(|e| self.err("equation", format!("does not parse: {e}")))?;
-        Ok(Equation { text, poly })
+        Equation::parse(&text, vars).map_err(|m| self.err("equation", m))
     }
 }
 
@@ -158,114 +124,44 @@ fn site(i: usize, v: &Value) -> Result<Site, Error> {
         },
         "circle" => SiteKind::Circle {
             center: f.get("center", point)?,
-            radius: f.number_where("radius", |r| r >= 0.0, "radius must be >= 0")?,
+            radius: f.get("radius", number)?,
         },
-        "ellipse" => {
-            let center = f.get("center", point)?;
-            let semi_axes = f.get("semi_axes", numbers::<2>)?;
-            if semi_axes.iter().any(|&s| s <= 0.0) {
-                return Err(f.err(
-                    "semi_axes",
-                    format!(
-                        "semi-axes must be > 0, found [{}, {}]",
-                        semi_axes[0], semi_axes[1]
-                    ),
-                ));
-            }
-            SiteKind::Ellipse {
-                center,
-                semi_axes,
-                rotation: f.opt("rotation", number)?.unwrap_or(0.0),
-            }
-        }
-        "segment" => {
-            let (from, to) = (f.get("from", point)?, f.get("to", point)?);
-            if from == to {
-                return Err(f.err("to", "zero-length segment (from == to)"));
-            }
-            SiteKind::Segment { from, to }
-        }
-        "arc" => {
-            let center = f.get("center", point)?;
-            let radius = f.number_where("radius", |r| r > 0.0, "radius must be > 0")?;
-            let start_angle = f.get("start_angle", number)?;
-            let end_angle = f.get("end_angle", number)?;
-            if start_angle == end_angle {
-                return Err(f.err(
-                    "end_angle",
-                    "equal to start_angle: the arc is empty (a full circle ends at start_angle + 2π)",
-                ));
-            }
-            SiteKind::Arc {
-                center,
-                radius,
-                start_angle,
-                end_angle,
-            }
-        }
-        "polyline" => {
-            let points = f.get("points", points)?;
-            if points.len() < 2 {
-                return Err(f.err(
-                    "points",
-                    format!("a polyline needs at least 2 points, found {}", points.len()),
-                ));
-            }
-            if let Some(k) = (1..points.len()).find(|&k| points[k] == points[k - 1]) {
-                return Err(f.err(
-                    "points",
-                    format!("points {} and {k} coincide (zero-length edge)", k - 1),
-                ));
-            }
-            SiteKind::Polyline { points }
-        }
-        "polygon" => {
-            let rings = f.get("rings", rings)?;
-            check_rings(&rings).map_err(|m| f.err("rings", m))?;
-            SiteKind::Polygon { rings }
-        }
-        "algebraic" => {
-            let equation = f.equation(&['x', 'y'])?;
-            if equation.poly.total_degree() == 0 {
-                return Err(f.err(
-                    "equation",
-                    "the equation is constant: its curve is empty or the whole plane",
-                ));
-            }
-            SiteKind::Algebraic {
-                equation,
-                clip: f.opt("clip", aabb)?,
-            }
-        }
-        "bezier" => {
-            let control_points = f.get("control_points", points)?;
-            if control_points.len() < 2 {
-                return Err(f.err(
-                    "control_points",
-                    format!(
-                        "a Bézier curve needs at least 2 control points, found {}",
-                        control_points.len()
-                    ),
-                ));
-            }
-            not_all_equal(&f, &control_points)?;
-            let weights = weights(&f, control_points.len())?;
-            SiteKind::Bezier {
-                control_points,
-                weights,
-            }
-        }
+        "ellipse" => SiteKind::Ellipse {
+            center: f.get("center", point)?,
+            semi_axes: f.get("semi_axes", numbers::<2>)?,
+            rotation: f.opt("rotation", number)?.unwrap_or(0.0),
+        },
+        "segment" => SiteKind::Segment {
+            from: f.get("from", point)?,
+            to: f.get("to", point)?,
+        },
+        "arc" => SiteKind::Arc {
+            center: f.get("center", point)?,
+            radius: f.get("radius", number)?,
+            start_angle: f.get("start_angle", number)?,
+            end_angle: f.get("end_angle", number)?,
+        },
+        "polyline" => SiteKind::Polyline {
+            points: f.get("points", points)?,
+        },
+        "polygon" => SiteKind::Polygon {
+            rings: f.get("rings", rings)?,
+        },
+        "algebraic" => SiteKind::Algebraic {
+            equation: f.equation(&['x', 'y'])?,
+            clip: f.opt("clip", aabb)?,
+        },
+        "bezier" => SiteKind::Bezier {
+            control_points: f.get("control_points", points)?,
+            weights: f.opt("weights", numbers_vec)?,
+        },
         "bspline" => bspline(&f)?,
         "field" => SiteKind::Field {
             equation: f.equation(&['x', 'y'])?,
         },
-        "implicit_field" => {
-            let equation = f.equation(&['x', 'y', 'z'])?;
-            if equation.poly.degree_in(2) == 0 {
-                return Err(f.err("equation", "an implicit field must involve z"));
-            }
-            SiteKind::ImplicitField { equation }
-        }
+        "implicit_field" => SiteKind::ImplicitField {
+            equation: f.equation(&['x', 'y', 'z'])?,
+        },
         other => {
             return Err(f.err(
                 "kind",
@@ -301,14 +197,14 @@ fn metric(f: &Fields) -> Result<Metric, Error> {
     match kind.as_str() {
         "euclidean" => Ok(Metric::Euclidean),
         "lp" => {
+            // Ranges are checked with the scene; here p only has to be a whole number.
             let p = get("p")?;
-            let limit = f64::from(MAX_DEGREE);
             if p < 2.0 || p.fract() != 0.0 || p % 2.0 != 0.0 {
                 Err(f.err(
                     "metric.p",
                     format!("p must be an even integer >= 2, found {p}"),
                 ))
-            } else if p > limit {
+            } else if p > f64::from(MAX_DEGREE) {
                 Err(f.err(
                     "metric.p",
                     format!("p = {p} exceeds the largest supported exponent {MAX_DEGREE}"),
@@ -320,23 +216,17 @@ fn metric(f: &Fields) -> Result<Metric, Error> {
         "anisotropic" => {
             let v = present(obj, "matrix")
                 .ok_or_else(|| f.err("metric.matrix", "missing required field"))?;
-            let matrix = spd_matrix(v).map_err(|msg| f.err("metric.matrix", msg))?;
+            let matrix = matrix(v).map_err(|msg| f.err("metric.matrix", msg))?;
             Ok(Metric::Anisotropic {
                 matrix,
                 weight: weight()?,
             })
         }
         "power" => Ok(Metric::Power { weight: weight()? }),
-        "moebius" => {
-            let scale = get("scale")?;
-            if scale <= 0.0 {
-                return Err(f.err("metric.scale", format!("scale must be > 0, found {scale}")));
-            }
-            Ok(Metric::Moebius {
-                scale,
-                weight: weight()?,
-            })
-        }
+        "moebius" => Ok(Metric::Moebius {
+            scale: get("scale")?,
+            weight: weight()?,
+        }),
         other => Err(f.err(
             "metric.kind",
             format!(
@@ -347,9 +237,8 @@ fn metric(f: &Fields) -> Result<Metric, Error> {
     }
 }
 
-/// A symmetric positive-definite 2×2 matrix `[[a, b], [b, c]]`. Off-diagonal entries that
-/// differ by rounding only (relative 1e-12) are averaged.
-fn spd_matrix(v: &Value) -> Result<[[f64; 2]; 2], String> {
+/// A 2×2 matrix `[[a, b], [c, d]]` (symmetry and definiteness are checked with the scene).
+fn matrix(v: &Value) -> Result<[[f64; 2]; 2], String> {
     let rows = array(v, "a 2×2 matrix [[a, b], [b, c]]")?;
     if rows.len() != 2 {
         return Err(format!("expected 2 rows, found {}", rows.len()));
@@ -358,44 +247,20 @@ fn spd_matrix(v: &Value) -> Result<[[f64; 2]; 2], String> {
     for (r, row) in rows.iter().enumerate() {
         m[r] = numbers::<2>(row).map_err(|e| format!("row {r}: {e}"))?;
     }
-    let scale = m.iter().flatten().fold(0.0f64, |s, x| s.max(x.abs()));
-    if (m[0][1] - m[1][0]).abs() > 1e-12 * scale {
-        return Err(format!(
-            "not symmetric ({} and {} off the diagonal)",
-            m[0][1], m[1][0]
-        ));
-    }
-    let b = 0.5 * (m[0][1] + m[1][0]);
-    let (a, c) = (m[0][0], m[1][1]);
-    let mean = 0.5 * (a + c);
-    let radius = (0.5 * (a - c)).hypot(b);
-    let high = mean + radius;
-    let det = a.mul_add(c, -(b * b));
-    if !(high.is_finite() && det.is_finite()) {
-        return Err("entries too large (the determinant overflows)".into());
-    }
-    // The accurate small eigenvalue is det / the large one.
-    let low = if high > 0.0 {
-        det / high
-    } else {
-        mean - radius
-    };
-    if low <= 0.0 || high <= 0.0 {
-        return Err(format!(
-            "not positive-definite (eigenvalues {high} and {low})"
-        ));
-    }
-    Ok([[a, b], [b, c]])
+    Ok(m)
 }
 
 fn bspline(f: &Fields) -> Result<SiteKind, Error> {
-    let degree = f.number_where(
-        "degree",
-        |d| d >= 1.0 && d.fract() == 0.0,
-        "degree must be an integer >= 1",
-    )?;
+    let degree = f.get("degree", number)?;
+    if !(degree >= 1.0 && degree.fract() == 0.0) {
+        return Err(f.err(
+            "degree",
+            format!("degree must be an integer >= 1, found {degree}"),
+        ));
+    }
     let control_points = f.get("control_points", points)?;
     let n = control_points.len();
+    // Below the number of control points the degree converts exactly.
     if degree >= n as f64 {
         return Err(f.err(
             "control_points",
@@ -405,79 +270,13 @@ fn bspline(f: &Fields) -> Result<SiteKind, Error> {
             ),
         ));
     }
-    // `degree < n`, so the cast is exact and `n + degree + 1` cannot overflow.
-    let degree = degree as usize;
-    not_all_equal(f, &control_points)?;
-    let knots = f.get("knots", numbers_vec)?;
-    let need = n + degree + 1;
-    if knots.len() != need {
-        return Err(f.err(
-            "knots",
-            format!(
-                "{} knots, but degree {degree} with {n} control points needs {need}",
-                knots.len()
-            ),
-        ));
-    }
-    if let Some(k) = (1..need).find(|&k| knots[k] < knots[k - 1]) {
-        return Err(f.err(
-            "knots",
-            format!(
-                "knots must be non-decreasing: knot {k} ({}) < knot {} ({})",
-                knots[k],
-                k - 1,
-                knots[k - 1]
-            ),
-        ));
-    }
-    if knots[degree] >= knots[n] {
-        return Err(f.err(
-            "knots",
-            format!(
-                "the parameter range [knots[{degree}], knots[{n}]] = [{}, {}] is empty",
-                knots[degree], knots[n]
-            ),
-        ));
-    }
-    let weights = weights(f, n)?;
-    let closed = f.opt("closed", boolean)?.unwrap_or(false);
     Ok(SiteKind::Bspline {
-        degree,
+        degree: degree as usize,
         control_points,
-        knots,
-        weights,
-        closed,
+        knots: f.get("knots", numbers_vec)?,
+        weights: f.opt("weights", numbers_vec)?,
+        closed: f.opt("closed", boolean)?.unwrap_or(false),
     })
-}
-
-/// Optional rational weights: one per control point, each > 0.
-fn weights(f: &Fields, n: usize) -> Result<Option<Vec<f64>>, Error> {
-    let Some(w) = f.opt("weights", numbers_vec)? else {
-        return Ok(None);
-    };
-    if w.len() != n {
-        return Err(f.err(
-            "weights",
-            format!("{} weights for {n} control points", w.len()),
-        ));
-    }
-    if let Some(k) = w.iter().position(|&x| x <= 0.0) {
-        return Err(f.err(
-            "weights",
-            format!("weights must be > 0, weight {k} is {}", w[k]),
-        ));
-    }
-    Ok(Some(w))
-}
-
-fn not_all_equal(f: &Fields, pts: &[Point]) -> Result<(), Error> {
-    if pts.iter().all(|&p| p == pts[0]) {
-        return Err(f.err(
-            "control_points",
-            "all control points coincide: the curve is a single point",
-        ));
-    }
-    Ok(())
 }
 
 /// `obj[field]` unless absent or `null`.
@@ -578,24 +377,11 @@ fn rings(v: &Value) -> Result<Vec<Vec<Point>>, String> {
         .collect()
 }
 
-/// A box `[xmin, ymin, xmax, ymax]` with `xmin < xmax`, `ymin < ymax` and finite sides.
+/// A box `[xmin, ymin, xmax, ymax]` (checked as the scene checks boxes).
 fn aabb(v: &Value) -> Result<Aabb, String> {
     let a = numbers::<4>(v).map_err(|e| format!("{e} (expected [xmin, ymin, xmax, ymax])"))?;
     let b = Aabb::from_array(a);
-    if !(b.min.x < b.max.x && b.min.y < b.max.y) {
-        let what = if b.min.x > b.max.x || b.min.y > b.max.y {
-            "inverted"
-        } else {
-            "empty"
-        };
-        return Err(format!(
-            "{what}: need xmin < xmax and ymin < ymax, found [{}, {}, {}, {}]",
-            a[0], a[1], a[2], a[3]
-        ));
-    }
-    if !b.longest_side().is_finite() {
-        return Err("too large: its sides overflow".into());
-    }
+    super::check::check_box(&b)?;
     Ok(b)
 }
 

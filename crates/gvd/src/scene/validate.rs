@@ -2,29 +2,10 @@
 //! holes inside the outer ring, duplicate point sites.
 
 use super::{Site, SiteKind};
+use crate::geom::predicates::orientation as orient;
+use crate::geom::ring::winding_number;
 use crate::geom::Point;
 use std::cmp::Ordering;
-
-/// The sign of the orientation of `(a, b, c)`: `Greater` when counter-clockwise (exact).
-/// Coordinates beyond `2^±400` are first scaled by a power of two (exact) to about 1,
-/// where the predicate's products neither overflow nor underflow.
-fn orient(a: Point, b: Point, c: Point) -> Ordering {
-    let m = [a, b, c]
-        .iter()
-        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let s = if m == 0.0 || (m > 2f64.powi(-400) && m < 2f64.powi(400)) {
-        1.0
-    } else {
-        2f64.powi(-(m.log2().ceil() as i32))
-    };
-    let k = |p: Point| robust::Coord {
-        x: p.x * s,
-        y: p.y * s,
-    };
-    robust::orient2d(k(a), k(b), k(c))
-        .partial_cmp(&0.0)
-        .unwrap_or(Ordering::Equal)
-}
 
 /// Whether `p`, known to be collinear with segment `ab`, lies on the closed segment.
 fn on_segment(a: Point, b: Point, p: Point) -> bool {
@@ -110,11 +91,11 @@ pub(super) fn check_rings(rings: &[Vec<Point>]) -> Result<(), String> {
     check_crossings(rings)?;
     let outer = &rings[0];
     for (h, hole) in rings.iter().enumerate().skip(1) {
-        if !inside(outer, hole[0]) {
+        if winding_number(outer, hole[0]) == 0 {
             return Err(format!("hole ring {h} lies outside the outer ring 0"));
         }
         for (g, other) in rings.iter().enumerate().skip(1) {
-            if g != h && inside(other, hole[0]) {
+            if g != h && winding_number(other, hole[0]) != 0 {
                 return Err(format!("hole ring {h} lies inside hole ring {g}"));
             }
         }
@@ -179,23 +160,6 @@ fn check_crossings(rings: &[Vec<Point>]) -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-/// Whether `p` (not on the ring) lies inside the closed ring (winding number ≠ 0).
-fn inside(ring: &[Point], p: Point) -> bool {
-    let n = ring.len();
-    let mut winding = 0i64;
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        if a.y <= p.y {
-            if b.y > p.y && orient(a, b, p) == Ordering::Greater {
-                winding += 1;
-            }
-        } else if b.y <= p.y && orient(a, b, p) == Ordering::Less {
-            winding -= 1;
-        }
-    }
-    winding != 0
 }
 
 /// The first point site that repeats an earlier one (same location and same metric), as

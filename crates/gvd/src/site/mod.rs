@@ -9,7 +9,7 @@ mod lp;
 mod polynomial;
 
 pub use circle::CircleField;
-pub use ellipse::{offset_polynomial, EllipseField};
+pub use ellipse::EllipseField;
 pub use euclidean::EuclideanPoint;
 pub use implicit::{ImplicitField, ImplicitState};
 pub use lp::LpPoint;
@@ -86,7 +86,9 @@ pub fn bound_difference<F: DistanceField + ?Sized>(
 /// A site's distance field, one variant per family.
 #[derive(Clone, Debug)]
 pub enum SiteField {
+    /// A Euclidean point by its closed form.
     Euclidean(EuclideanPoint),
+    /// A polynomial field in x and y (point metrics and `field` sites).
     Polynomial(PolynomialField),
     /// An lp point by its closed form (exact separable bounds).
     Lp(LpPoint),
@@ -145,7 +147,7 @@ impl SiteField {
                 *center, *semi_axes, *rotation,
             )))),
             SiteKind::ImplicitField { equation } => Ok(SiteField::Implicit(Box::new(
-                ImplicitField::new(index, &equation.poly, domain)?,
+                ImplicitField::new(index, equation.poly(), domain)?,
             ))),
             SiteKind::Point { at, metric } => Ok(match metric {
                 Metric::Euclidean => SiteField::Euclidean(EuclideanPoint::new(*at)),
@@ -153,7 +155,7 @@ impl SiteField {
                 _ => SiteField::Polynomial(PolynomialField::from_metric(*at, metric)),
             }),
             SiteKind::Field { equation } => Ok(SiteField::Polynomial(PolynomialField::new(
-                equation.poly.clone(),
+                equation.poly().clone(),
             ))),
             other => Err(Error::Unsupported {
                 site: index,
@@ -171,10 +173,10 @@ impl SiteField {
     /// The fields of every site of a scene, with explicit choices.
     pub fn for_scene_with(scene: &Scene, options: &FieldOptions) -> Result<Vec<SiteField>, Error> {
         scene
-            .sites
+            .sites()
             .iter()
             .enumerate()
-            .map(|(i, s)| SiteField::from_site_with(i, &s.kind, &scene.domain, options))
+            .map(|(i, s)| SiteField::from_site_with(i, &s.kind, &scene.domain(), options))
             .collect()
     }
 }

@@ -13,7 +13,6 @@ mod tree;
 use crate::complex::VoronoiComplex;
 use crate::geom::Aabb;
 use crate::site::DistanceField;
-pub use filter::Certificate;
 use resolve::{LeafOutput, Port, PortId, Resolver, Tolerances};
 use serde_json::json;
 use std::time::Instant;
@@ -22,6 +21,7 @@ pub use tree::Leaf;
 /// Parameters of a subdivision run.
 #[derive(Clone, Copy, Debug)]
 pub struct Params {
+    /// The box the diagram is computed in.
     pub domain: Aabb,
     /// Output curves lie within this distance of the true diagram.
     pub epsilon: f64,

@@ -107,7 +107,7 @@ impl Field {
                 c: *center,
                 r: *radius,
                 start: *start_angle,
-                sweep: crate::scene::arc_sweep(*start_angle, *end_angle),
+                sweep: crate::geom::arc::sweep(*start_angle, *end_angle),
             },
             SiteKind::Polyline { points } => {
                 Field::chain(points.windows(2).map(|w| (w[0], w[1])).collect())
@@ -124,11 +124,11 @@ impl Field {
                 rot: *rotation,
             },
             SiteKind::Field { equation } => Field::Poly {
-                f: equation.poly.clone(),
+                f: equation.poly().clone(),
                 h,
             },
             SiteKind::ImplicitField { equation } => Field::Implicit {
-                g: equation.poly.clone(),
+                g: equation.poly().clone(),
                 h,
             },
             other => {
@@ -572,17 +572,6 @@ mod tests {
         let c = [1.9970599999999998, 0.0, -1.0, -1.0];
         let z = smallest_nonneg_root(&c);
         assert!((c[0] - z * z - z * z * z).abs() < 1e-12, "{z}");
-    }
-
-    #[test]
-    fn dbg_cubic_root() {
-        let r2 = 1.997;
-        let z = smallest_nonneg_root(&[r2, 0.0, -1.0, -1.0]);
-        eprintln!("root {z} residual {}", r2 - z * z - z * z * z);
-        let g =
-            crate::num::poly::Poly::parse("(x-0.5)^2 + y^2 - z^2*(1+z)", &['x', 'y', 'z']).unwrap();
-        let c = z_coeffs(&g, Point::new(-0.876, -0.322));
-        eprintln!("coeffs {c:?} root {}", smallest_nonneg_root(&c));
     }
 
     use super::*;

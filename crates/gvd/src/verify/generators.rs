@@ -83,8 +83,8 @@ pub(super) struct Gens {
 impl Gens {
     /// Builds the generators of `scene`, or refuses what the checker cannot evaluate.
     pub(super) fn new(scene: &Scene) -> Result<Gens, Error> {
-        let featured = scene.mode != Mode::Voronoi;
-        let h = 1e-6 * scene.domain.longest_side();
+        let featured = scene.mode() != Mode::Voronoi;
+        let h = 1e-6 * scene.domain().longest_side();
         let mut g = Gens {
             fields: Vec::new(),
             labels: Vec::new(),
@@ -96,9 +96,9 @@ impl Gens {
             region: None,
             lookup: HashMap::new(),
         };
-        for (i, site) in scene.sites.iter().enumerate() {
+        for (i, site) in scene.sites().iter().enumerate() {
             let kind = &site.kind;
-            if scene.mode == Mode::MedialAxis && matches!(kind, SiteKind::Ellipse { .. }) {
+            if scene.mode() == Mode::MedialAxis && matches!(kind, SiteKind::Ellipse { .. }) {
                 return Err(Error::Unsupported {
                     site: i,
                     kind: kind.name().to_string(),
@@ -143,7 +143,7 @@ impl Gens {
                 let curved = matches!(f, Field::Arc { .. } | Field::Ellipse { .. });
                 g.push(f, i, None, curved);
             }
-            if scene.mode != Mode::MedialAxis {
+            if scene.mode() != Mode::MedialAxis {
                 match kind {
                     SiteKind::Polygon { rings } => g.masks.push(Mask::Polygon {
                         region: Region::new(super::field::ring_segments(rings)),
@@ -155,7 +155,7 @@ impl Gens {
                 }
             }
         }
-        if scene.mode == Mode::MedialAxis {
+        if scene.mode() == Mode::MedialAxis {
             let r = medial_region(scene);
             g.region = (!r.is_empty()).then_some(r);
         }
@@ -212,7 +212,7 @@ impl Gens {
 
     /// An arc's corners and piece (a full circle: its piece only).
     fn add_arc(&mut self, site: usize, c: Point, r: f64, start: f64, end: f64) {
-        let sweep = crate::scene::arc_sweep(start, end);
+        let sweep = crate::geom::arc::sweep(start, end);
         let f = Field::Arc { c, r, start, sweep };
         if sweep >= TAU {
             self.push(f, site, Some((2, 0)), true);

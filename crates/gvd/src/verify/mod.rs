@@ -50,7 +50,6 @@ mod region;
 use crate::complex::{Generator, VoronoiComplex};
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
-use crate::incremental::rescale;
 use crate::par::map_range;
 use crate::scene::{Mode, Scene};
 use field::Field;
@@ -131,11 +130,11 @@ pub fn verify(
 ) -> Result<Report, Error> {
     // Euclidean scenes beyond 2^±200 are checked at a power-of-two scale near 1 (exact),
     // where squared distances neither overflow nor underflow.
-    if crate::incremental::linear::supports(scene) {
-        if let Some(s) = rescale::factor(scene) {
+    if scene.scales_exactly() {
+        if let Some(s) = scene.unit_scale() {
             let mut scaled = diagram.clone();
-            rescale::unscale(&mut scaled, 1.0 / s);
-            let mut report = check(&rescale::scene(scene, s), &scaled, opts, 1.0 / s)?;
+            scaled.scale(s);
+            let mut report = check(&scene.scaled(s), &scaled, opts, 1.0 / s)?;
             report.worst_edge_error /= s;
             return Ok(report);
         }
@@ -321,15 +320,15 @@ impl<'a> Checker<'a> {
             scene,
             gens,
             fields: &gens.fields,
-            near: Nearest::new(gens, scene.domain),
+            near: Nearest::new(gens, scene.domain()),
             diagram,
             opts,
-            tol: opts.slack * scene.epsilon,
-            scale: scene.domain.longest_side(),
+            tol: opts.slack * scene.epsilon(),
+            scale: scene.domain().longest_side(),
             edges: Vec::new(),
             vgens: Vec::new(),
             vtwice: Vec::new(),
-            tiny: 1e-12 * scene.domain.longest_side(),
+            tiny: 1e-12 * scene.domain().longest_side(),
             errors: Vec::new(),
             warnings: Vec::new(),
         };
@@ -455,7 +454,7 @@ impl<'a> Checker<'a> {
     /// each at most 4ε). Returns `e_tie` (distance moved + residual, in length units),
     /// the projected point, and the smaller field there with its gradient.
     fn project(&self, q0: Point, a: usize, b: usize) -> (f64, Point, f64, Point) {
-        let cap = 4.0 * self.scene.epsilon;
+        let cap = 4.0 * self.scene.epsilon();
         let mut q = q0;
         let (mut va, mut ga) = self.eval(a, q);
         let (mut vb, mut gb) = self.eval(b, q);
@@ -531,7 +530,7 @@ impl<'a> Checker<'a> {
 
     /// Whether `q` lies in the `medial_axis` region (always true in the other modes).
     fn in_region(&self, q: Point) -> bool {
-        self.scene.mode != Mode::MedialAxis
+        self.scene.mode() != Mode::MedialAxis
             || self.gens.region.as_ref().is_some_and(|r| r.contains(q))
     }
 
@@ -558,7 +557,7 @@ impl<'a> Checker<'a> {
         } else {
             "another generator is nearer"
         };
-        let out = self.scene.domain.outside_distance(q0);
+        let out = self.scene.domain().outside_distance(q0);
         if out > e {
             (e, why) = (out, "outside the domain");
         }
@@ -602,7 +601,7 @@ impl<'a> Checker<'a> {
 
     /// Check a: returns (fraction good, worst error, pass).
     fn soundness(&self, problems: &mut Vec<String>) -> (f64, f64, bool) {
-        let spacing = self.scene.epsilon / 2.0;
+        let spacing = self.scene.epsilon() / 2.0;
         let mut samples: Vec<(Point, usize)> = Vec::new();
         for (g, ge) in self.edges.iter().enumerate() {
             let pts = &self.diagram.edges[ge.index].points;
@@ -641,7 +640,7 @@ impl<'a> Checker<'a> {
                 self.name(ge.a),
                 self.name(ge.b),
                 fmt_g3(e * self.unit),
-                fmt_g3(e / self.scene.epsilon),
+                fmt_g3(e / self.scene.epsilon()),
                 self.at(samples[i].0)
             ));
         }
@@ -693,7 +692,7 @@ impl<'a> Checker<'a> {
     /// The error of vertex `v` with generators `gens`, of which the curved `twice` are
     /// listed twice, and why.
     fn vertex_error(&self, v: Point, gens: &[usize], twice: &[usize]) -> (f64, String) {
-        let cap = 4.0 * self.scene.epsilon;
+        let cap = 4.0 * self.scene.epsilon();
         let mut pos = v;
         for _ in 0..6 {
             let (s, _) = self.gauss_newton_step(pos, gens);
@@ -730,7 +729,7 @@ impl<'a> Checker<'a> {
         }
         let (e_other, who) = self.intrusion(pos, vmin, gmin, gens);
         let e = e_tie.hypot(e_other);
-        let out = self.scene.domain.outside_distance(v);
+        let out = self.scene.domain().outside_distance(v);
         let why = if out >= e {
             "outside the domain".to_string()
         } else if e_tie >= e_other {
@@ -773,7 +772,7 @@ impl<'a> Checker<'a> {
                     .join(", "),
                 self.at(vs[k].at),
                 fmt_g3(e * self.unit),
-                fmt_g3(e / self.scene.epsilon)
+                fmt_g3(e / self.scene.epsilon())
             ));
         }
         if bad.len() > MAX_LIST {
@@ -856,7 +855,7 @@ impl<'a> Checker<'a> {
 
     /// Check c: returns the fraction of covered crossings.
     fn completeness(&self, problems: &mut Vec<String>) -> f64 {
-        let dom = self.scene.domain;
+        let dom = self.scene.domain();
         let n = self.opts.grid.max(2);
         let (hx, hy) = (dom.width() / n as f64, dom.height() / n as f64);
         let r = 2.0 * self.tol + hx.max(hy);
@@ -960,7 +959,7 @@ impl<'a> Checker<'a> {
     /// Check d: the edge ends (the labels were checked by `parse`).
     fn structure(&mut self) {
         let d = self.diagram;
-        let dom = self.scene.domain;
+        let dom = self.scene.domain();
         let nv = d.vertices.len();
         let mut degree = vec![0usize; nv];
         let mut errors = Vec::new();
@@ -992,7 +991,7 @@ impl<'a> Checker<'a> {
                                 "edge {k}: '{name}' end {} is {} ({} eps) from vertex {v} at {}",
                                 self.at(p),
                                 fmt_g3(dv * self.unit),
-                                fmt_g3(dv / self.scene.epsilon),
+                                fmt_g3(dv / self.scene.epsilon()),
                                 self.at(d.vertices[v].at)
                             ));
                         }

@@ -82,7 +82,7 @@ fn open_ends(site: &SiteKind) -> Option<(Point, Point)> {
             start_angle,
             end_angle,
         } => {
-            let sweep = crate::scene::arc_sweep(*start_angle, *end_angle);
+            let sweep = crate::geom::arc::sweep(*start_angle, *end_angle);
             if sweep >= TAU {
                 return None;
             }
@@ -96,9 +96,9 @@ fn open_ends(site: &SiteKind) -> Option<(Point, Point)> {
 /// The open sites whose ends join up (within `1e-9` of the scene's size) into closed
 /// loops: sites with a free end are peeled off until none is left.
 pub(super) fn closed_chains(scene: &Scene) -> Vec<usize> {
-    let tol = 1e-9 * scene.domain.longest_side();
+    let tol = 1e-9 * scene.domain().longest_side();
     let ends: Vec<(usize, Point, Point)> = scene
-        .sites
+        .sites()
         .iter()
         .enumerate()
         .filter_map(|(i, s)| open_ends(&s.kind).map(|(a, b)| (i, a, b)))
@@ -142,7 +142,7 @@ pub(super) fn boundary_segments(site: &SiteKind, sagitta: f64) -> Vec<(Point, Po
             start_angle,
             end_angle,
         } => {
-            let sweep = crate::scene::arc_sweep(*start_angle, *end_angle);
+            let sweep = crate::geom::arc::sweep(*start_angle, *end_angle);
             // chord of angle θ has sagitta r (1 − cos(θ/2))
             let theta = 2.0 * (1.0 - (sagitta / radius).min(1.0)).acos();
             let n = ((sweep / theta.max(1e-9)).ceil() as usize).clamp(8, 200_000);
@@ -159,15 +159,15 @@ pub(super) fn boundary_segments(site: &SiteKind, sagitta: f64) -> Vec<(Point, Po
 /// The `medial_axis` region of a scene: the even-odd interior of its polygons and of
 /// the chains of open sites that close up.
 pub(super) fn medial_region(scene: &Scene) -> Region {
-    let sagitta = 1e-3 * scene.epsilon;
+    let sagitta = 1e-3 * scene.epsilon();
     let mut segs = Vec::new();
-    for s in &scene.sites {
+    for s in scene.sites() {
         if matches!(s.kind, SiteKind::Polygon { .. }) {
             segs.extend(boundary_segments(&s.kind, sagitta));
         }
     }
     for i in closed_chains(scene) {
-        segs.extend(boundary_segments(&scene.sites[i].kind, sagitta));
+        segs.extend(boundary_segments(&scene.sites()[i].kind, sagitta));
     }
     Region::new(segs)
 }

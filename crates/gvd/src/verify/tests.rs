@@ -1,6 +1,5 @@
 use super::*;
 use crate::complex::{smallvec, Edge, Vertex};
-use crate::num::poly::Poly;
 use crate::scene::{Equation, Metric, Site, SiteKind};
 
 const EPS: f64 = 1e-3;
@@ -10,15 +9,16 @@ fn domain() -> Aabb {
 }
 
 fn scene(sites: Vec<SiteKind>) -> Scene {
-    Scene {
-        domain: domain(),
-        epsilon: EPS,
-        mode: Mode::Voronoi,
-        sites: sites
+    Scene::new(
+        domain(),
+        EPS,
+        Mode::Voronoi,
+        sites
             .into_iter()
             .map(|kind| Site { id: None, kind })
             .collect(),
-    }
+    )
+    .expect("a valid scene")
 }
 
 fn euclid(p: &[(f64, f64)]) -> Vec<SiteKind> {
@@ -289,21 +289,8 @@ fn dangling_end_and_bad_labels_fail_structure() {
 #[test]
 fn implicit_field_and_segments() {
     // (x + 0.5)² + y² − (z + 0.2)²: the circle of radius 0.2 about (−0.5, 0)
-    let g = Poly {
-        terms: vec![
-            ([0, 0, 0], 0.21),
-            ([0, 0, 1], -0.4),
-            ([0, 0, 2], -1.0),
-            ([0, 2, 0], 1.0),
-            ([1, 0, 0], 1.0),
-            ([2, 0, 0], 1.0),
-        ],
-    };
     let implicit = SiteKind::ImplicitField {
-        equation: Equation {
-            text: "(x+0.5)^2 + y^2 - (z+0.2)^2".into(),
-            poly: g,
-        },
+        equation: Equation::parse("(x+0.5)^2 + y^2 - (z+0.2)^2", &['x', 'y', 'z']).unwrap(),
     };
     let circle = SiteKind::Circle {
         center: Point::new(0.5, 0.0),
@@ -322,7 +309,7 @@ fn implicit_field_and_segments() {
 
 #[test]
 fn unsupported_kinds_and_modes_are_refused() {
-    let mut s = scene(vec![SiteKind::Bezier {
+    let s = scene(vec![SiteKind::Bezier {
         control_points: vec![
             Point::new(0.0, 0.0),
             Point::new(0.5, 0.5),
@@ -335,17 +322,17 @@ fn unsupported_kinds_and_modes_are_refused() {
         verify(&s, &d, &VerifyOptions::default()),
         Err(Error::Unsupported { site: 0, .. })
     ));
-    s.sites[0].kind = SiteKind::Ellipse {
+    let s = scene(vec![SiteKind::Ellipse {
         center: Point::default(),
         semi_axes: [0.5, 0.25],
         rotation: 0.0,
-    };
-    s.mode = Mode::MedialAxis;
+    }])
+    .with_mode(Mode::MedialAxis);
     assert!(matches!(
         verify(&s, &d, &VerifyOptions::default()),
         Err(Error::Unsupported { site: 0, .. })
     ));
-    s.mode = Mode::Complex;
+    let s = s.with_mode(Mode::Complex);
     assert!(verify(&s, &d, &VerifyOptions::default()).is_ok());
 }
 
@@ -479,19 +466,6 @@ fn random_check(n: usize, grid: usize) -> (Report, std::time::Duration) {
 fn random_points_against_delaunay_pass() {
     let (r, _) = random_check(150, 256);
     assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
-}
-
-/// `cargo test --release -p gvd --lib verify -- --ignored --nocapture`
-#[test]
-#[ignore]
-fn timing_800_points_grid_512() {
-    let (r, t) = random_check(800, 512);
-    println!(
-        "800 points, grid 512: {} in {:.2} s",
-        r.summary_line(),
-        t.as_secs_f64()
-    );
-    assert!(r.passed, "{:?}", r.problems);
 }
 
 /// On the common normal of a tangent joint (an arc and a segment, turned so that no

@@ -91,7 +91,7 @@ pub fn dist(s: &Scene, g: &Generator, q: Point) -> f64 {
         radius,
         start_angle,
         end_angle,
-    } = s.sites[g.site()].kind
+    } = s.sites()[g.site()].kind
     {
         return match *g {
             Generator::Feature {
@@ -104,7 +104,7 @@ pub fn dist(s: &Scene, g: &Generator, q: Point) -> f64 {
     }
     match *g {
         Generator::Site(i) => {
-            let kind = &s.sites[i].kind;
+            let kind = &s.sites()[i].kind;
             if let SiteKind::Polygon { rings } = kind {
                 if inside_polygon(q, rings) {
                     return 0.0;
@@ -120,7 +120,7 @@ pub fn dist(s: &Scene, g: &Generator, q: Point) -> f64 {
             feature,
             index,
         } => {
-            let (pts, edges) = features(&s.sites[site].kind);
+            let (pts, edges) = features(&s.sites()[site].kind);
             match feature {
                 FeatureKind::Corner => q.dist(pts[index]),
                 _ => {
@@ -135,8 +135,8 @@ pub fn dist(s: &Scene, g: &Generator, q: Point) -> f64 {
 /// Every generator of the scene in its mode.
 pub fn generators(s: &Scene) -> Vec<Generator> {
     let mut out = Vec::new();
-    for (i, site) in s.sites.iter().enumerate() {
-        match (&site.kind, s.mode) {
+    for (i, site) in s.sites().iter().enumerate() {
+        match (&site.kind, s.mode()) {
             (SiteKind::Point { .. }, _) | (_, Mode::Voronoi) => out.push(Generator::Site(i)),
             (kind, _) => {
                 let (pts, edges) = features(kind);

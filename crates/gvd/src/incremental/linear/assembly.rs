@@ -218,8 +218,8 @@ pub(super) fn assemble(
     bisectors: bool,
     phases: &mut Phases,
 ) -> Result<VoronoiComplex, Error> {
-    let mode = scene.mode;
-    let tol = scene.epsilon / 4.0;
+    let mode = scene.mode();
+    let tol = scene.epsilon() / 4.0;
     let joints = joints::tangent_joints(&g.points, &g.segments, &g.arcs);
     let at_joint = |x: Gen| matches!(x, Gen::Point(p) if joints.contains_key(&p));
     let (mut raw_vertices, mut raw_edges) = diagram.raw(tol, |a, b| {
@@ -230,7 +230,7 @@ pub(super) fn assemble(
     // Contracting a tip moves edge ends by its length: at most epsilon/8 (tips are
     // points up to rounding, which grows where the sliver's sides meet a bisector at
     // a shallow angle far out).
-    let tip_tol = scene.epsilon / 8.0;
+    let tip_tol = scene.epsilon() / 8.0;
     let length = |e: &RawEdge| {
         let mut points = Vec::new();
         diagram.polyline(e.half, tol, &mut points);
@@ -266,7 +266,7 @@ pub(super) fn assemble(
     );
     drop(raw_edges);
     // Insides of polygons, clipping, output indices.
-    let domain = scene.domain;
+    let domain = scene.domain();
     // Where an edge ends on a site (a corner), the two distance fields are not
     // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
     let hair = 1e-9 * domain.longest_side();

@@ -1,8 +1,8 @@
 //! Exact detection of segments that cross, overlap or touch another one's interior,
 //! and of points inside a segment, with a uniform grid over the segments' boxes.
 
+use crate::geom::predicates::orient2d as orient;
 use crate::geom::Point;
-use robust::{orient2d, Coord};
 
 /// Two generators that the segment engine cannot take together.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,11 +15,6 @@ pub(crate) enum Conflict {
     Touch(usize, usize),
     /// Point `p` lies inside segment `i`.
     PointOn(usize, usize),
-}
-
-fn orient(a: Point, b: Point, c: Point) -> f64 {
-    let k = |p: Point| Coord { x: p.x, y: p.y };
-    orient2d(k(a), k(b), k(c))
 }
 
 /// Whether `c`, collinear with `a` and `b`, lies strictly between them.

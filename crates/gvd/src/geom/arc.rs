@@ -1,0 +1,112 @@
+//! Circular arcs: one model and one full-circle rule for every module.
+//!
+//! An arc runs counter-clockwise from `start_angle` to `end_angle` (radians). Its sweep
+//! is `(end − start) mod 2π`; a sweep within [`FULL_TURN_TOLERANCE`] of 0 or of 2π is
+//! the full circle (the rule of the format's reference checker; a start equal to the end
+//! is refused when the scene is read).
+
+use super::Point;
+use std::f64::consts::TAU;
+
+/// Sweeps within this many radians of a whole turn are the full circle.
+pub const FULL_TURN_TOLERANCE: f64 = 1e-12;
+
+/// The counter-clockwise angle from `start` to `end` in `(0, 2π)`, or `None` for the full
+/// circle.
+pub fn partial_sweep(start: f64, end: f64) -> Option<f64> {
+    let sweep = (end - start).rem_euclid(TAU);
+    (sweep > FULL_TURN_TOLERANCE && sweep < TAU - FULL_TURN_TOLERANCE).then_some(sweep)
+}
+
+/// The counter-clockwise angle from `start` to `end` in `(0, 2π]`: `2π` for the full
+/// circle.
+pub fn sweep(start: f64, end: f64) -> f64 {
+    partial_sweep(start, end).unwrap_or(TAU)
+}
+
+/// An arc of a circle: centre, radius, start angle and counter-clockwise sweep in
+/// `(0, 2π]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Arc {
+    /// The circle's centre.
+    pub center: Point,
+    /// The circle's radius.
+    pub radius: f64,
+    /// The angle of the first end, in radians.
+    pub start: f64,
+    /// The counter-clockwise angle swept, in `(0, 2π]`.
+    pub sweep: f64,
+}
+
+impl Arc {
+    /// The arc from `start_angle` to `end_angle` (the format's fields).
+    pub fn from_angles(center: Point, radius: f64, start_angle: f64, end_angle: f64) -> Arc {
+        Arc {
+            center,
+            radius,
+            start: start_angle,
+            sweep: sweep(start_angle, end_angle),
+        }
+    }
+
+    /// Whether the arc is the whole circle.
+    pub fn is_full(&self) -> bool {
+        self.sweep >= TAU
+    }
+
+    /// The point at angle `theta` on the arc's circle.
+    pub fn at_angle(&self, theta: f64) -> Point {
+        let (s, c) = theta.sin_cos();
+        Point::new(
+            self.center.x + self.radius * c,
+            self.center.y + self.radius * s,
+        )
+    }
+
+    /// The arc's two ends (equal for a full circle).
+    pub fn ends(&self) -> [Point; 2] {
+        [
+            self.at_angle(self.start),
+            self.at_angle(self.start + self.sweep),
+        ]
+    }
+
+    /// Whether the direction `theta` from the centre falls within the closed arc.
+    pub fn spans(&self, theta: f64) -> bool {
+        self.is_full() || (theta - self.start).rem_euclid(TAU) <= self.sweep
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn whole_turns_are_full_circles_and_nothing_else_is() {
+        assert_eq!(partial_sweep(0.0, TAU), None);
+        assert_eq!(partial_sweep(1.0, 1.0 + TAU), None);
+        assert_eq!(partial_sweep(0.0, -TAU), None);
+        assert_eq!(partial_sweep(0.0, 2.0 * TAU), None);
+        assert_eq!(partial_sweep(0.0, 1e-13), None);
+        assert_eq!(partial_sweep(0.0, TAU - 1e-13), None);
+        // more than a turn but not a whole number of turns: the remainder
+        let s = partial_sweep(0.0, 7.0).unwrap();
+        assert!((s - (7.0 - TAU)).abs() < 1e-15);
+        // clockwise input runs the other way round
+        let s = partial_sweep(0.0, -1.0).unwrap();
+        assert!((s - (TAU - 1.0)).abs() < 1e-15);
+        assert_eq!(sweep(0.0, TAU), TAU);
+        assert_eq!(sweep(0.0, 1.5), 1.5);
+    }
+
+    #[test]
+    fn spans_wraps_through_zero() {
+        let a = Arc::from_angles(Point::new(0.0, 0.0), 1.0, 3.0 * TAU / 4.0, TAU / 4.0);
+        assert!((a.sweep - TAU / 2.0).abs() < 1e-15);
+        assert!(a.spans(0.0));
+        assert!(!a.spans(TAU / 2.0));
+        let [p, q] = a.ends();
+        assert!(p.dist(Point::new(0.0, -1.0)) < 1e-15);
+        assert!(q.dist(Point::new(0.0, 1.0)) < 1e-15);
+    }
+}

@@ -19,7 +19,7 @@
 //! ```
 //! use gvd::geom::{Aabb, Point};
 //! let pts = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)];
-//! let d = gvd::incremental::points_voronoi(&pts, Aabb::from_array([-1.0, -1.0, 2.0, 2.0])).unwrap();
+//! let d = gvd::internals::points_voronoi(&pts, Aabb::from_array([-1.0, -1.0, 2.0, 2.0])).unwrap();
 //! assert_eq!(d.vertices.len(), 1);
 //! assert_eq!(d.edges.len(), 3);
 //! ```

@@ -8,7 +8,7 @@ use crate::geom::{Point, PointGrid};
 use crate::incremental;
 use crate::scene::Scene;
 use crate::scene::{Metric, SiteKind};
-use crate::site::{FieldOptions, SiteField};
+use crate::site::FieldOptions;
 use crate::subdivision;
 
 /// Which algorithm family computes the diagram.
@@ -41,6 +41,9 @@ pub struct Options {
     /// Give every edge of the incremental engine its exact bisector in
     /// offset-parameter form ([`crate::complex::Edge::bisector`]).
     pub bisectors: bool,
+    /// The boxes and output points the subdivision engine may use (defaults grow with
+    /// the number of sites); running out gives [`Error::Budget`].
+    pub limits: subdivision::Limits,
 }
 
 impl Default for Options {
@@ -51,6 +54,7 @@ impl Default for Options {
             parallel: cfg!(feature = "parallel"),
             fields: FieldOptions::default(),
             bisectors: false,
+            limits: Default::default(),
         }
     }
 }
@@ -113,14 +117,9 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         }
         _ => {}
     }
-    let fields = SiteField::for_scene_with(scene, &options.fields)?;
-    let params = subdivision::Params {
-        domain: scene.domain,
-        epsilon: scene.epsilon,
-        max_box: options.max_box,
-        parallel: options.parallel,
-    };
-    let out = subdivision::run(&fields, &params);
+    let params =
+        subdivision::Params::for_scene(scene, options.max_box, options.parallel, options.limits);
+    let out = subdivision::run_scene(scene, &options.fields, &params)?;
     Ok(Computation {
         complex: out.complex,
         boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),

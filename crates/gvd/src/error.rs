@@ -38,6 +38,13 @@ pub enum Error {
     /// A diagram file could not be read.
     #[error("diagram: {0}")]
     Diagram(String),
+    /// A computation reached a work limit (`what`: "boxes" or "points") before it ended.
+    #[error("{message}")]
+    Budget {
+        what: String,
+        limit: usize,
+        message: String,
+    },
 }
 
 impl Error {

@@ -21,13 +21,8 @@ fn data(name: &str) -> Scene {
 /// The diagram through the subdivision engine with the given field choices.
 fn run(scene: &Scene, options: FieldOptions) -> VoronoiComplex {
     let fields = SiteField::for_scene_with(scene, &options).unwrap();
-    let params = gvd::subdivision::Params {
-        domain: scene.domain,
-        epsilon: scene.epsilon,
-        max_box: None,
-        parallel: true,
-    };
-    gvd::subdivision::run(&fields, &params).complex
+    let params = gvd::subdivision::Params::for_scene(scene, None, true, Default::default());
+    gvd::subdivision::run(&fields, &params).unwrap().complex
 }
 
 fn implicit_circles() -> FieldOptions {

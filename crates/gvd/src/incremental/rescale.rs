@@ -1,16 +1,19 @@
-//! An exact power-of-two rescaling for the segment engine, which works in the scene's
-//! coordinates: a scene whose largest coordinate is beyond `2^±200` is computed at a
-//! scale where it is about 1 (the frame around the sites, squared distances and the
-//! conics' coefficients then neither overflow nor underflow), and its diagram is scaled
-//! back. Multiplying by a power of two is exact, so nothing is rounded on the way.
+//! An exact power-of-two rescaling for the segment and subdivision engines, which work
+//! in the scene's coordinates: a scene whose field values reach beyond `2^±200` is
+//! computed at a scale where its largest coordinate is about 1 (the frame around the
+//! sites, squared distances, lp powers and the conics' coefficients then neither
+//! overflow nor underflow), and its diagram is scaled back. Multiplying by a power of two is exact, so nothing is rounded on the way.
 
 use crate::complex::VoronoiComplex;
 use crate::geom::Point;
-use crate::scene::{Scene, SiteKind};
+use crate::scene::{Metric, Scene, SiteKind};
 
 /// The factor `2^e` that brings the scene's largest coordinate (domain, sites, radii)
-/// near 1, or `None` when it already lies within `2^±200`.
+/// near 1, or `None` when there is no need or no way: every field value `m^k` (`k` the
+/// fields' common degree, [`degree`]) already lies within `2^±200`, or the fields have
+/// no common degree (a scene mixing degrees is not the same diagram at another scale).
 pub(crate) fn factor(scene: &Scene) -> Option<f64> {
+    let k = degree(scene)?;
     let mut m = scene
         .domain
         .to_array()
@@ -21,23 +24,57 @@ pub(crate) fn factor(scene: &Scene) -> Option<f64> {
         match &site.kind {
             SiteKind::Point { at, .. } => see(*at),
             SiteKind::Segment { from, to } => [*from, *to].into_iter().for_each(&mut see),
-            SiteKind::Arc { center, radius, .. } => {
+            SiteKind::Arc { center, radius, .. } | SiteKind::Circle { center, radius } => {
                 see(*center);
                 see(Point::new(*radius, 0.0));
+            }
+            SiteKind::Ellipse {
+                center, semi_axes, ..
+            } => {
+                see(*center);
+                see(Point::new(semi_axes[0], semi_axes[1]));
             }
             SiteKind::Polyline { points } => points.iter().copied().for_each(&mut see),
             SiteKind::Polygon { rings } => rings.iter().flatten().copied().for_each(&mut see),
             _ => {}
         }
     }
-    if m == 0.0 || (m > 2f64.powi(-200) && m < 2f64.powi(200)) {
+    let bound = 200.0 / f64::from(k);
+    if m == 0.0 || m.log2().abs() < bound {
         return None;
     }
     Some(2f64.powi(-(m.log2().ceil() as i32)))
 }
 
-/// `scene` with every coordinate and length times `s` (sites the segment engine does
-/// not take are left as they are).
+/// The degree `k` shared by every site's field, so that scaling the scene by `s` scales
+/// every field by `s^k` and keeps the diagram: 1 for distances (Euclidean points,
+/// circles, ellipses, segments, arcs, polylines, polygons), 2 for the quadratic metrics
+/// (anisotropic, power, Möbius, whose weights scale with them), `p` for lp. `None` when
+/// the sites differ or one cannot be scaled (curves and fields given by equations,
+/// free-form curves).
+pub(crate) fn degree(scene: &Scene) -> Option<u32> {
+    let of = |kind: &SiteKind| match kind {
+        SiteKind::Point { metric, .. } => Some(match metric {
+            Metric::Euclidean => 1,
+            Metric::Lp { p } => *p,
+            Metric::Anisotropic { .. } | Metric::Power { .. } | Metric::Moebius { .. } => 2,
+        }),
+        SiteKind::Circle { .. }
+        | SiteKind::Ellipse { .. }
+        | SiteKind::Segment { .. }
+        | SiteKind::Arc { .. }
+        | SiteKind::Polyline { .. }
+        | SiteKind::Polygon { .. } => Some(1),
+        _ => None,
+    };
+    let mut degrees = scene.sites.iter().map(|s| of(&s.kind));
+    let first = degrees.next().unwrap_or(Some(1))?;
+    degrees.all(|k| k == Some(first)).then_some(first)
+}
+
+/// `scene` with every coordinate and length times `s`, and the weights of the quadratic
+/// metrics times `s` (power: `w` is a length) or `s²` (sites [`degree`] cannot scale are
+/// left as they are).
 pub(crate) fn scene(scene: &Scene, s: f64) -> Scene {
     let p = |q: &Point| *q * s;
     let mut out = scene.clone();
@@ -45,9 +82,26 @@ pub(crate) fn scene(scene: &Scene, s: f64) -> Scene {
     out.epsilon = scene.epsilon * s;
     for site in &mut out.sites {
         match &mut site.kind {
-            SiteKind::Point { at, .. } => *at = p(at),
+            SiteKind::Point { at, metric } => {
+                *at = p(at);
+                match metric {
+                    Metric::Power { weight } => *weight *= s,
+                    Metric::Anisotropic { weight, .. } | Metric::Moebius { weight, .. } => {
+                        *weight *= s * s
+                    }
+                    Metric::Euclidean | Metric::Lp { .. } => {}
+                }
+            }
             SiteKind::Segment { from, to } => (*from, *to) = (p(from), p(to)),
-            SiteKind::Arc { center, radius, .. } => (*center, *radius) = (p(center), *radius * s),
+            SiteKind::Arc { center, radius, .. } | SiteKind::Circle { center, radius } => {
+                (*center, *radius) = (p(center), *radius * s)
+            }
+            SiteKind::Ellipse {
+                center, semi_axes, ..
+            } => {
+                *center = p(center);
+                semi_axes.iter_mut().for_each(|a| *a *= s);
+            }
             SiteKind::Polyline { points } => points.iter_mut().for_each(|q| *q = p(q)),
             SiteKind::Polygon { rings } => rings.iter_mut().flatten().for_each(|q| *q = p(q)),
             _ => {}

@@ -3,6 +3,7 @@
 //! sides into shared segments, find the label changes on them, resolve each leaf, stitch.
 
 mod assemble;
+mod budget;
 mod filter;
 mod locate;
 mod resolve;
@@ -11,8 +12,13 @@ mod trace;
 mod tree;
 
 use crate::complex::VoronoiComplex;
+use crate::error::Error;
 use crate::geom::Aabb;
-use crate::site::DistanceField;
+use crate::incremental::rescale;
+use crate::scene::Scene;
+use crate::site::{DistanceField, FieldOptions, SiteField};
+use budget::Budget;
+pub use budget::Limits;
 pub use filter::Certificate;
 use resolve::{LeafOutput, Port, PortId, Resolver, Tolerances};
 use serde_json::json;
@@ -29,6 +35,8 @@ pub struct Params {
     pub max_box: Option<f64>,
     /// Use rayon's thread pool (the result is the same either way).
     pub parallel: bool,
+    /// The boxes and output points the run may use.
+    pub limits: Limits,
 }
 
 /// The diagram and the leaves of the subdivision (for pictures and box counts).
@@ -37,29 +45,75 @@ pub struct Output {
     pub leaves: Vec<Leaf>,
 }
 
-/// Computes the minimization diagram of `fields` over the domain.
-pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
+impl Params {
+    /// The parameters of a run over `scene`'s domain at its epsilon.
+    pub fn for_scene(scene: &Scene, max_box: Option<f64>, parallel: bool, limits: Limits) -> Self {
+        Params {
+            domain: scene.domain,
+            epsilon: scene.epsilon,
+            max_box,
+            parallel,
+            limits,
+        }
+    }
+}
+
+/// [`run`] over the fields of `scene` (as `field_options` choose them). A scene whose
+/// field values would overflow or underflow f64 (`incremental::rescale`: coordinates
+/// beyond about `2^±200` for distances, `2^±50` for lp4) is computed at an exact
+/// power-of-two scale where its largest coordinate is about 1, and its diagram and
+/// boxes scaled back (`stats.rescaled_by` gives the factor used): the same diagram,
+/// scaled, as the scene at unit scale.
+pub fn run_scene(
+    scene: &Scene,
+    field_options: &FieldOptions,
+    params: &Params,
+) -> Result<Output, Error> {
+    let Some(s) = rescale::factor(scene) else {
+        let fields = SiteField::for_scene_with(scene, field_options)?;
+        return run(&fields, params);
+    };
+    let scaled = rescale::scene(scene, s);
+    let fields = SiteField::for_scene_with(&scaled, field_options)?;
+    let scaled_params = Params {
+        domain: scaled.domain,
+        epsilon: scaled.epsilon,
+        max_box: params.max_box.map(|m| m * s),
+        ..*params
+    };
+    let mut out = run(&fields, &scaled_params)?;
+    rescale::unscale(&mut out.complex, s);
+    for leaf in &mut out.leaves {
+        leaf.aabb = Aabb::new(leaf.aabb.min * (1.0 / s), leaf.aabb.max * (1.0 / s));
+    }
+    let stats = &mut out.complex.stats;
+    for key in ["resolution", "epsilon_floored_from"] {
+        if let Some(v) = stats.get(key).and_then(|v| v.as_f64()) {
+            stats.insert(key.into(), json!(v / s));
+        }
+    }
+    stats.insert("rescaled_by".into(), json!(s));
+    Ok(out)
+}
+
+/// Computes the minimization diagram of `fields` over the domain, or
+/// [`Error::Budget`] when it needs more boxes or points than `params.limits` allow.
+///
+/// The resolution is `params.epsilon`, floored where f64 or the box lattice cannot
+/// resolve it (see [`resolution`]); `stats.resolution` gives the one used.
+pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Result<Output, Error> {
     let start = Instant::now();
-    let eps = params.epsilon;
-    // lengths below a few hundred ulps of the coordinates cannot be resolved: floor the
-    // resolution there (an epsilon finer than f64 allows gives f64's best instead)
-    let d = &params.domain;
-    let magnitude = d
-        .min
-        .x
-        .abs()
-        .max(d.max.x.abs())
-        .max(d.min.y.abs())
-        .max(d.max.y.abs());
-    let eps = eps.max(1024.0 * f64::EPSILON * magnitude);
-    let min_box = 0.5 * eps;
     let lattice = tree::Lattice::new(&params.domain, params.max_box);
+    let eps = params.epsilon.max(resolution(&params.domain, &lattice));
+    let min_box = 0.5 * eps;
+    let budget = Budget::new(&params.limits, fields.len());
     let tree_params = tree::Params {
         max_box: params.max_box,
         min_box,
         parallel: params.parallel,
     };
-    let leaves = tree::subdivide(fields, &lattice, &tree_params);
+    let leaves = tree::subdivide(fields, &lattice, &tree_params, &budget);
+    budget.check(eps)?;
     let t_subdivide = start.elapsed().as_secs_f64();
 
     let segs = segments::build(&leaves, &lattice);
@@ -101,10 +155,13 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
                 });
             }
         }
-        Resolver::new(fields, tol, l as u32).resolve_leaf(leaf, ports, &mut out);
+        if !budget.exhausted() {
+            Resolver::new(fields, tol, &budget, l as u32).resolve_leaf(leaf, ports, &mut out);
+        }
         out
     };
     let outputs: Vec<LeafOutput> = map(params.parallel, &leaf_ids, resolve_one);
+    budget.check(eps)?;
     let t_resolve = start.elapsed().as_secs_f64();
     let uncertified: u32 = outputs.iter().map(|o| o.uncertified).sum();
     let local_splits: u32 = outputs.iter().map(|o| o.local_splits).sum();
@@ -128,11 +185,23 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Output {
     );
     stats.insert("engine".into(), json!("subdivision"));
     stats.insert("resolution".into(), json!(eps));
+    if eps > params.epsilon {
+        stats.insert("epsilon_floored_from".into(), json!(params.epsilon));
+    }
     stats.insert("boxes".into(), json!(spanning));
     stats.insert("leaves".into(), json!(leaves.len()));
     stats.insert("uncertified_boxes".into(), json!(uncertified));
     stats.insert("local_splits".into(), json!(local_splits));
-    Output { complex, leaves }
+    Ok(Output { complex, leaves })
+}
+
+/// The finest resolution a run over `domain` can give: a few hundred ulps of its largest
+/// coordinate (below that f64 cannot tell points apart), and two of the lattice's
+/// smallest boxes (below that no box can be split). A finer epsilon is floored here.
+pub fn resolution(domain: &Aabb, lattice: &tree::Lattice) -> f64 {
+    let magnitude = domain.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let f64_floor = 1024.0 * f64::EPSILON * magnitude;
+    f64_floor.max(2.0 * lattice.smallest_box())
 }
 
 /// The sorted intersection of two sorted site lists.

@@ -6,6 +6,7 @@
 //! the domain is a grid of `n[0] × n[1]` root cells (of side at most the maximum box
 //! size, when one is asked for), each cell subdivided dyadically below that.
 
+use super::budget::Budget;
 use super::filter::{self, Certificate};
 use crate::geom::{Aabb, Axis, Point};
 use crate::site::DistanceField;
@@ -39,6 +40,11 @@ impl Lattice {
             cell: [w / cells[0] as f64, h / cells[1] as f64],
             cells,
         }
+    }
+
+    /// The longest side of the smallest box the lattice can hold.
+    pub fn smallest_box(&self) -> f64 {
+        self.cell[0].max(self.cell[1]) / (1u64 << CELL_BITS) as f64
     }
 
     fn coord(&self, axis: usize, v: u64) -> f64 {
@@ -124,9 +130,24 @@ pub struct Params {
     pub parallel: bool,
 }
 
+/// What every box of one run shares.
+struct Run<'a, F> {
+    fields: &'a [F],
+    lattice: &'a Lattice,
+    params: &'a Params,
+    budget: &'a Budget,
+}
+
 /// Runs Alg. 1 and returns the leaves in a deterministic order (depth-first, lower child
-/// first), whatever the number of threads.
-pub fn subdivide<F: DistanceField>(fields: &[F], lattice: &Lattice, params: &Params) -> Vec<Leaf> {
+/// first), whatever the number of threads. Each box visited takes one from `budget`;
+/// once it is exhausted no box is split again (the leaves are then incomplete, and the
+/// caller reports the exhausted budget instead of a diagram).
+pub fn subdivide<F: DistanceField>(
+    fields: &[F],
+    lattice: &Lattice,
+    params: &Params,
+    budget: &Budget,
+) -> Vec<Leaf> {
     let root = lattice.root();
     let aabb = lattice.aabb(&root);
     let sites: Vec<(u32, F::State)> = fields
@@ -135,78 +156,82 @@ pub fn subdivide<F: DistanceField>(fields: &[F], lattice: &Lattice, params: &Par
         .map(|(i, f)| (i as u32, f.state(&aabb)))
         .collect();
     let mut out = Vec::new();
-    recurse(fields, lattice, params, root, aabb, sites, &mut out);
+    let run = Run {
+        fields,
+        lattice,
+        params,
+        budget,
+    };
+    run.recurse(root, aabb, sites, &mut out);
     out
 }
 
-fn recurse<F: DistanceField>(
-    fields: &[F],
-    lattice: &Lattice,
-    params: &Params,
-    ib: IBox,
-    aabb: Aabb,
-    sites: Vec<(u32, F::State)>,
-    out: &mut Vec<Leaf>,
-) {
-    let sites = filter::lower_envelope(fields, &aabb, sites);
-    let size = aabb.longest_side();
-    let leaf = |sites: &[(u32, F::State)], certificate: Certificate, uncertified: bool| Leaf {
-        ib,
-        aabb,
-        sites: sites.iter().map(|s| s.0).collect(),
-        certificate,
-        uncertified,
-    };
-    if sites.len() <= 1 {
-        out.push(leaf(&sites, Certificate::None, false));
-        return;
-    }
-    let too_big = params.max_box.is_some_and(|m| size > m * (1.0 + 1e-9));
-    if !too_big {
-        let certificate = filter::certify(fields, &aabb, &sites);
-        if certificate != Certificate::None {
-            out.push(leaf(&sites, certificate, false));
+impl<F: DistanceField> Run<'_, F> {
+    fn recurse(&self, ib: IBox, aabb: Aabb, sites: Vec<(u32, F::State)>, out: &mut Vec<Leaf>) {
+        if !self.budget.take_box() {
             return;
         }
+        let (fields, lattice, params) = (self.fields, self.lattice, self.params);
+        let sites = filter::lower_envelope(fields, &aabb, sites);
+        let size = aabb.longest_side();
+        let leaf = |sites: &[(u32, F::State)], certificate: Certificate, uncertified: bool| Leaf {
+            ib,
+            aabb,
+            sites: sites.iter().map(|s| s.0).collect(),
+            certificate,
+            uncertified,
+        };
+        if sites.len() <= 1 {
+            out.push(leaf(&sites, Certificate::None, false));
+            return;
+        }
+        let too_big = params.max_box.is_some_and(|m| size > m * (1.0 + 1e-9));
+        if !too_big {
+            let certificate = filter::certify(fields, &aabb, &sites);
+            if certificate != Certificate::None {
+                out.push(leaf(&sites, certificate, false));
+                return;
+            }
+        }
+        let axis = if aabb.width() >= aabb.height() { 0 } else { 1 };
+        let split = if size <= params.min_box && !too_big {
+            None
+        } else {
+            ib.split(axis)
+        };
+        let Some((li, ri, mid)) = split else {
+            out.push(leaf(&sites, Certificate::None, true));
+            return;
+        };
+        let at = lattice.point(mid, mid);
+        let (ax, at) = if axis == 0 {
+            (Axis::X, at.x)
+        } else {
+            (Axis::Y, at.y)
+        };
+        let (la, ra) = aabb.split(ax, at);
+        let mut left = Vec::with_capacity(sites.len());
+        let mut right = Vec::with_capacity(sites.len());
+        for (i, s) in &sites {
+            let (l, r) = fields[*i as usize].split(s, &aabb, ax, at);
+            left.push((*i, l));
+            right.push((*i, r));
+        }
+        drop(sites);
+        let fork = params.parallel && (left.len() >= 16 || size > params.min_box * 64.0);
+        #[cfg(not(feature = "parallel"))]
+        let _ = fork; // one thread: the subtrees run in turn below
+        #[cfg(feature = "parallel")]
+        if fork {
+            let mut rout = Vec::new();
+            rayon::join(
+                || self.recurse(li, la, left, out),
+                || self.recurse(ri, ra, right, &mut rout),
+            );
+            out.append(&mut rout);
+            return;
+        }
+        self.recurse(li, la, left, out);
+        self.recurse(ri, ra, right, out);
     }
-    let axis = if aabb.width() >= aabb.height() { 0 } else { 1 };
-    let split = if size <= params.min_box && !too_big {
-        None
-    } else {
-        ib.split(axis)
-    };
-    let Some((li, ri, mid)) = split else {
-        out.push(leaf(&sites, Certificate::None, true));
-        return;
-    };
-    let at = lattice.point(mid, mid);
-    let (ax, at) = if axis == 0 {
-        (Axis::X, at.x)
-    } else {
-        (Axis::Y, at.y)
-    };
-    let (la, ra) = aabb.split(ax, at);
-    let mut left = Vec::with_capacity(sites.len());
-    let mut right = Vec::with_capacity(sites.len());
-    for (i, s) in &sites {
-        let (l, r) = fields[*i as usize].split(s, &aabb, ax, at);
-        left.push((*i, l));
-        right.push((*i, r));
-    }
-    drop(sites);
-    let fork = params.parallel && (left.len() >= 16 || size > params.min_box * 64.0);
-    #[cfg(not(feature = "parallel"))]
-    let _ = fork; // one thread: the subtrees run in turn below
-    #[cfg(feature = "parallel")]
-    if fork {
-        let mut rout = Vec::new();
-        rayon::join(
-            || recurse(fields, lattice, params, li, la, left, out),
-            || recurse(fields, lattice, params, ri, ra, right, &mut rout),
-        );
-        out.append(&mut rout);
-        return;
-    }
-    recurse(fields, lattice, params, li, la, left, out);
-    recurse(fields, lattice, params, ri, ra, right, out);
 }

@@ -38,6 +38,9 @@ pub enum Error {
     /// A diagram file could not be read.
     #[error("diagram: {0}")]
     Diagram(String),
+    /// An option of a computation or a check is out of its range.
+    #[error("option '{option}': {message}")]
+    InvalidOption { option: String, message: String },
     /// A computation reached a work limit (`what`: "boxes" or "points") before it ended.
     #[error("{message}")]
     Budget {

@@ -43,17 +43,28 @@ pub(crate) fn factor(scene: &Scene) -> Option<f64> {
     if m == 0.0 || m.log2().abs() < bound {
         return None;
     }
-    Some(2f64.powi(-(m.log2().ceil() as i32)))
+    let s = 2f64.powi(-(m.log2().ceil() as i32));
+    // a domain far smaller than a site would land among the subnormals: no help there
+    let extent = scene.domain.longest_side();
+    (extent * s > 2f64.powi(-900)).then_some(s)
 }
 
-/// The degree `k` shared by every site's field, so that scaling the scene by `s` scales
-/// every field by `s^k` and keeps the diagram: 1 for distances (Euclidean points,
-/// circles, ellipses, segments, arcs, polylines, polygons), 2 for the quadratic metrics
-/// (anisotropic, power, Möbius, whose weights scale with them), `p` for lp. `None` when
-/// the sites differ or one cannot be scaled (curves and fields given by equations,
-/// free-form curves).
+/// The degree `k` shared by every site's field ([`site_degree`]), so that scaling the
+/// scene by `s` scales every field by `s^k` and keeps the diagram. `None` when the sites
+/// differ or one cannot be scaled.
 pub(crate) fn degree(scene: &Scene) -> Option<u32> {
-    let of = |kind: &SiteKind| match kind {
+    let mut degrees = scene.sites.iter().map(|s| site_degree(&s.kind));
+    let first = degrees.next().unwrap_or(Some(1))?;
+    degrees.all(|k| k == Some(first)).then_some(first)
+}
+
+/// The degree of a site's field as a function of lengths: 1 for distances (Euclidean
+/// points, circles, ellipses, segments, arcs, polylines, polygons), 2 for the quadratic
+/// metrics (anisotropic, power, Möbius, whose weights scale with them), `p` for lp;
+/// `None` for sites this module does not scale (curves and fields given by equations,
+/// free-form curves).
+pub(crate) fn site_degree(kind: &SiteKind) -> Option<u32> {
+    match kind {
         SiteKind::Point { metric, .. } => Some(match metric {
             Metric::Euclidean => 1,
             Metric::Lp { p } => *p,
@@ -66,10 +77,7 @@ pub(crate) fn degree(scene: &Scene) -> Option<u32> {
         | SiteKind::Polyline { .. }
         | SiteKind::Polygon { .. } => Some(1),
         _ => None,
-    };
-    let mut degrees = scene.sites.iter().map(|s| of(&s.kind));
-    let first = degrees.next().unwrap_or(Some(1))?;
-    degrees.all(|k| k == Some(first)).then_some(first)
+    }
 }
 
 /// `scene` with every coordinate and length times `s`, and the weights of the quadratic

@@ -2,7 +2,9 @@
 //! names the site index and the exact field (`SCENE_FORMAT.md`, "Bad input"). Unknown
 //! fields are ignored; an optional field that is `null` counts as absent.
 
-use super::validate::{check_rings, duplicate_point};
+use super::validate::{
+    check_precision, check_rings, duplicate_point, duplicate_site, overlapping_ovals,
+};
 use super::{Equation, Metric, Mode, Scene, Site, SiteKind};
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
@@ -83,6 +85,9 @@ pub(super) fn scene_from_value(v: &Value) -> Result<Scene, Error> {
     if let Some((i, j)) = duplicate_point(&sites) {
         return Err(Error::site(i, "at", format!("duplicate of site {j}")));
     }
+    duplicate_site(&sites)?;
+    check_precision(&domain, epsilon, &sites)?;
+    overlapping_ovals(&sites)?;
     Ok(Scene {
         domain,
         epsilon,

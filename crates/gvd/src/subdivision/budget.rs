@@ -5,6 +5,7 @@
 //! memory. Counters are atomic: parallel subtrees draw on the same budget.
 
 use crate::error::Error;
+use crate::geom::Aabb;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
 
 /// Boxes a run may visit by default, on top of [`BOXES_PER_SITE`] per site. The
@@ -13,8 +14,8 @@ pub const BASE_BOXES: usize = 1 << 22;
 /// Boxes allowed per site on top of [`BASE_BOXES`].
 pub const BOXES_PER_SITE: usize = 64;
 /// Output polyline points a run may write by default, on top of [`POINTS_PER_SITE`] per
-/// site (about 25 bytes each in JSON: some 50 MB).
-pub const BASE_POINTS: usize = 1 << 21;
+/// site (some 40 bytes each in JSON, about as many again in the cells: some 50 MB).
+pub const BASE_POINTS: usize = 1 << 19;
 /// Output points allowed per site on top of [`BASE_POINTS`].
 pub const POINTS_PER_SITE: usize = 256;
 
@@ -57,6 +58,32 @@ impl Budget {
             out_of_boxes: AtomicBool::new(false),
             out_of_points: AtomicBool::new(false),
         }
+    }
+
+    /// Refuses at once a maximum box size `max_box` that is not a finite length > 0, or
+    /// that needs more boxes over `domain` than the budget holds.
+    pub fn check_max_box(&self, max_box: f64, domain: &Aabb) -> Result<(), Error> {
+        if !(max_box.is_finite() && max_box > 0.0) {
+            return Err(Error::InvalidOption {
+                option: "max_box".into(),
+                message: format!("must be a finite length > 0, found {max_box}"),
+            });
+        }
+        let boxes = (domain.width() / max_box).ceil() * (domain.height() / max_box).ceil();
+        if boxes > self.max_boxes as f64 {
+            return Err(Error::Budget {
+                what: "boxes".into(),
+                limit: self.max_boxes,
+                message: format!(
+                    "a maximum box size of {max_box:e} needs at least {boxes:.3e} boxes over the \
+                     domain ({:e} × {:e}), more than the {} allowed; raise --max-box (or --max-boxes)",
+                    domain.width(),
+                    domain.height(),
+                    self.max_boxes
+                ),
+            });
+        }
+        Ok(())
     }
 
     /// Takes one box; `false` once the boxes have run out.
@@ -140,6 +167,19 @@ mod tests {
         let e = b.check(1e-3).unwrap_err().to_string();
         assert!(e.contains("more than 3 boxes at epsilon 1e-3"), "{e}");
         assert!(!b.take_point());
+    }
+
+    #[test]
+    fn a_max_box_is_refused_when_absurd_or_beyond_the_budget() {
+        let b = Budget::new(&Limits::default(), 2);
+        let domain = Aabb::from_array([-2.0, -2.0, 2.0, 2.0]);
+        assert!(b.check_max_box(0.1, &domain).is_ok());
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = b.check_max_box(bad, &domain).unwrap_err().to_string();
+            assert!(e.contains("finite length > 0"), "{e}");
+        }
+        let e = b.check_max_box(1e-6, &domain).unwrap_err().to_string();
+        assert!(e.contains("1.600e13 boxes"), "{e}");
     }
 
     #[test]

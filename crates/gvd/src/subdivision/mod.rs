@@ -70,6 +70,7 @@ pub fn run_scene(
     params: &Params,
 ) -> Result<Output, Error> {
     let Some(s) = rescale::factor(scene) else {
+        check_field_range(scene)?;
         let fields = SiteField::for_scene_with(scene, field_options)?;
         return run(&fields, params);
     };
@@ -96,6 +97,58 @@ pub fn run_scene(
     Ok(out)
 }
 
+/// Refuses a scene whose field values overflow or underflow f64 over the domain (a
+/// scene that [`run_scene`] could not rescale, as its sites' fields differ in degree):
+/// a field of degree `k` takes values up to about `(2M)^k` (`M` the largest coordinate)
+/// and varies on the scale of `L^k` (`L` the domain's size).
+fn check_field_range(scene: &Scene) -> Result<(), Error> {
+    let d = &scene.domain;
+    let extent = d.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let size = d.longest_side().log2();
+    for (i, site) in scene.sites.iter().enumerate() {
+        let Some(k) = rescale::site_degree(&site.kind) else {
+            continue;
+        };
+        let reach = (2.0 * extent.max(site_extent(&site.kind))).log2();
+        let k = f64::from(k);
+        let what = if k * reach > 1000.0 {
+            "overflow"
+        } else if k * size < -1000.0 {
+            "underflow"
+        } else {
+            continue;
+        };
+        return Err(Error::Site {
+            site: i,
+            field: "kind".into(),
+            message: format!(
+                "its field (of degree {k} in lengths) would {what} f64 over this domain, and the scene mixes fields of different degrees, so no rescaling keeps its diagram; give the scene at a scale nearer 1"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The largest coordinate or length of a site's data, as far as it decides the size of
+/// its field's values.
+fn site_extent(kind: &crate::scene::SiteKind) -> f64 {
+    use crate::scene::SiteKind;
+    let m = |p: &crate::geom::Point| p.x.abs().max(p.y.abs());
+    match kind {
+        SiteKind::Point { at, .. } => m(at),
+        SiteKind::Circle { center, radius } | SiteKind::Arc { center, radius, .. } => {
+            m(center).max(*radius)
+        }
+        SiteKind::Ellipse {
+            center, semi_axes, ..
+        } => m(center).max(semi_axes[0]).max(semi_axes[1]),
+        SiteKind::Segment { from, to } => m(from).max(m(to)),
+        SiteKind::Polyline { points } => points.iter().map(m).fold(0.0, f64::max),
+        SiteKind::Polygon { rings } => rings.iter().flatten().map(m).fold(0.0, f64::max),
+        _ => 0.0,
+    }
+}
+
 /// Computes the minimization diagram of `fields` over the domain, or
 /// [`Error::Budget`] when it needs more boxes or points than `params.limits` allow.
 ///
@@ -107,6 +160,9 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Result<Output, Er
     let eps = params.epsilon.max(resolution(&params.domain, &lattice));
     let min_box = 0.5 * eps;
     let budget = Budget::new(&params.limits, fields.len());
+    if let Some(m) = params.max_box {
+        budget.check_max_box(m, &params.domain)?;
+    }
     let tree_params = tree::Params {
         max_box: params.max_box,
         min_box,

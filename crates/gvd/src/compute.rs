@@ -7,7 +7,7 @@ use crate::geom::Aabb;
 use crate::geom::{Point, PointGrid};
 use crate::incremental;
 use crate::scene::Scene;
-use crate::scene::{Metric, SiteKind};
+use crate::scene::{Metric, Mode, SiteKind};
 use crate::site::FieldOptions;
 use crate::subdivision;
 
@@ -73,6 +73,7 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 
 /// [`compute`], also returning the subdivision's leaves (none for the incremental engine).
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
+    check_medial_axis(scene)?;
     let points = euclidean_points(scene);
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {
@@ -124,6 +125,40 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         complex: out.complex,
         boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
     })
+}
+
+/// Refuses `medial_axis` mode where it has no meaning or no engine: the mode keeps the
+/// complex inside the regions that closed sites bound, so a scene without one (no
+/// polygon, closed curve, circle or ellipse) has an empty medial axis, which is
+/// refused rather than written as an empty diagram (nor as the Voronoi diagram the
+/// point and subdivision engines would give); circles and ellipses bound regions, but
+/// only the segment engine computes medial axes so far (polygons).
+fn check_medial_axis(scene: &Scene) -> Result<(), Error> {
+    if scene.mode != Mode::MedialAxis {
+        return Ok(());
+    }
+    let closed = |kind: &SiteKind| match kind {
+        SiteKind::Polygon { .. } | SiteKind::Circle { .. } | SiteKind::Ellipse { .. } => true,
+        SiteKind::Bspline { closed, .. } => *closed,
+        SiteKind::Bezier { control_points, .. } => control_points.first() == control_points.last(),
+        _ => false,
+    };
+    match scene.sites.iter().position(|s| closed(&s.kind)) {
+        None => Err(Error::scene(
+            "mode",
+            "'medial_axis' keeps the diagram inside the regions that closed sites bound \
+             (polygons, closed curves), and this scene has none: its medial axis is empty; \
+             use mode 'voronoi' or 'complex'",
+        )),
+        Some(i) if matches!(scene.sites[i].kind, SiteKind::Circle { .. } | SiteKind::Ellipse { .. }) => {
+            Err(Error::Unsupported {
+                site: i,
+                kind: scene.sites[i].kind.name().to_string(),
+                message: "the medial axis inside circles and ellipses is not computed yet (mode 'medial_axis' takes polygons)".into(),
+            })
+        }
+        Some(_) => Ok(()),
+    }
 }
 
 /// Runs an incremental computation and records its time and engine in `stats`.

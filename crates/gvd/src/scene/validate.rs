@@ -352,12 +352,13 @@ fn defining_field(kind: &SiteKind) -> &'static str {
     }
 }
 
-/// Numbers a scene's computations can resolve to within `epsilon`: a coordinate or a
-/// length `x` is known to `|x|·2^-52` (its ulp), so `|x| · 2^-52 · PRECISION_MARGIN`
-/// must not exceed epsilon. Beyond that the sites' positions, and any diagram of them,
-/// are coarser than asked (a segment end at 1e308 with epsilon 1e-3 leaves nothing of
-/// the segment's direction inside a unit domain).
-const PRECISION_MARGIN: f64 = 16.0;
+/// How much coarser than epsilon f64 may resolve a scene's numbers. A coordinate or a
+/// length `x` is known to `|x|·2^-52` (its ulp); an epsilon somewhat finer than that is
+/// floored by the engines (the subdivision reports `epsilon_floored_from`), but a number
+/// whose ulp exceeds `COARSEST` epsilons leaves nothing the diagram could resolve: a
+/// segment end at 1e308 with epsilon 1e-3 keeps nothing of the segment's direction
+/// inside a unit domain.
+const COARSEST: f64 = 64.0;
 
 /// Checks that f64 can resolve the scene at its epsilon: the domain's coordinates, each
 /// site's coordinates, radii and semi-axes, arc angles (times the radius), and the
@@ -365,15 +366,16 @@ const PRECISION_MARGIN: f64 = 16.0;
 /// they are, against the field's slope of about the domain's size). Names the site and
 /// field of the first number too large.
 pub(crate) fn check_precision(domain: &Aabb, epsilon: f64, sites: &[Site]) -> Result<(), Error> {
-    let ulp = |x: f64| x.abs() * f64::EPSILON * PRECISION_MARGIN;
+    let ulp = |x: f64| x.abs() * f64::EPSILON;
+    let limit = COARSEST * epsilon;
     let extent = domain.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if ulp(extent) > epsilon {
+    if ulp(extent) > limit {
         return Err(Error::scene(
             "epsilon",
             format!(
-                "epsilon {epsilon:e} is finer than f64 resolves in this domain (coordinates up to {extent:e} are spaced {:e}); the finest epsilon here is {:e}",
-                extent * f64::EPSILON,
-                ulp(extent)
+                "epsilon {epsilon:e} is far finer than f64 resolves in this domain (coordinates up to {extent:e} are spaced {:e}); the finest epsilon accepted here is {:e}",
+                ulp(extent),
+                ulp(extent) / COARSEST
             ),
         ));
     }
@@ -390,7 +392,7 @@ pub(crate) fn check_precision(domain: &Aabb, epsilon: f64, sites: &[Site]) -> Re
             )
         };
         let check = |field: &str, x: f64| {
-            if ulp(x) > epsilon {
+            if ulp(x) > limit {
                 Err(too_coarse(field, "coordinate or length", x, ulp(x)))
             } else {
                 Ok(())
@@ -406,7 +408,7 @@ pub(crate) fn check_precision(domain: &Aabb, epsilon: f64, sites: &[Site]) -> Re
                     Metric::Anisotropic { weight, .. } | Metric::Moebius { weight, .. } => *weight,
                     Metric::Euclidean | Metric::Lp { .. } => 0.0,
                 };
-                if ulp(weight) > epsilon * slope {
+                if ulp(weight) > limit * slope {
                     return Err(too_coarse(
                         "metric.weight",
                         "the weight's contribution to the field",
@@ -439,7 +441,7 @@ pub(crate) fn check_precision(domain: &Aabb, epsilon: f64, sites: &[Site]) -> Re
                 point("center", center)?;
                 check("radius", *radius)?;
                 for (field, angle) in [("start_angle", start_angle), ("end_angle", end_angle)] {
-                    if ulp(*angle) * radius > epsilon {
+                    if ulp(*angle) * radius > limit {
                         return Err(too_coarse(field, "angle", *angle, ulp(*angle) * radius));
                     }
                 }

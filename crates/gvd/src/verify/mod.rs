@@ -152,16 +152,15 @@ pub fn verify(
             message: format!("must be a finite number > 0, found {}", opts.slack),
         });
     }
-    // Euclidean scenes beyond 2^±200 are checked at a power-of-two scale near 1 (exact),
-    // where squared distances neither overflow nor underflow.
-    if crate::incremental::linear::supports(scene) {
-        if let Some(s) = rescale::factor(scene) {
-            let mut scaled = diagram.clone();
-            rescale::unscale(&mut scaled, 1.0 / s);
-            let mut report = check(&rescale::scene(scene, s), &scaled, opts, 1.0 / s)?;
-            report.worst_edge_error /= s;
-            return Ok(report);
-        }
+    // Scenes whose fields share a degree and would overflow or underflow (beyond 2^±200
+    // for distances) are checked at a power-of-two scale near 1 (exact, the same
+    // diagram), as the engines compute them.
+    if let Some(s) = rescale::factor(scene) {
+        let mut scaled = diagram.clone();
+        rescale::unscale(&mut scaled, 1.0 / s);
+        let mut report = check(&rescale::scene(scene, s), &scaled, opts, 1.0 / s)?;
+        report.worst_edge_error /= s;
+        return Ok(report);
     }
     check(scene, diagram, opts, 1.0)
 }

@@ -7,7 +7,9 @@
 # FUZZ_DIR holds the reproducers (e.g. ../shared/corpus/hard/fuzz). Exit 0 with an output
 # file or exit 2 with a message and no output file is a pass; a timeout (124), a signal
 # (>128), a panic ("panicked" on stderr), a refusal that leaves an output, or a success
-# without one is a FAIL. The script exits 1 when any run fails.
+# without one is a FAIL. A diagram written is then checked by `gvd verify` (last column:
+# PASS, FAIL, or "-" when the check does not end within the time limit); a FAIL there
+# is reported as WRONG. The script exits 1 when any run fails or is wrong.
 set -uo pipefail
 DIR="${1:?usage: $0 FUZZ_DIR [GVD_BINARY]}"
 GVD="${2:-target/release/gvd}"
@@ -40,9 +42,15 @@ run() { # label success-writes-output(yes|no) args...
     *) verdict=FAIL ;;
   esac
   [ ${#msg} -ge 150 ] && [ "$(wc -c <"$OUT/stderr")" -gt 2000 ] && verdict=FAIL
-  [ "$verdict" = FAIL ] && failed=1
-  printf '%-4s %-46s rc=%-3s %5.1fs %9s B %6s edges  %s\n' "$verdict" "$label" "$rc" \
-    "$(echo "$t1 - $t0" | bc)" "$size" "$edges" "$msg"
+  local check="-"
+  if [ "$rc" = 0 ] && [ "$size" != "-" ] && [ "$1" = compute ]; then
+    check=$( (ulimit -v "$LIMIT_KB"; timeout -s KILL "$LIMIT_S" "$GVD" verify "$2" "$OUT/out.json" 2>/dev/null) | tail -n 1 | awk '{print $NF}')
+    [ "$check" = FAIL ] && [ "$verdict" = ok ] && verdict=WRONG
+    [ -z "$check" ] && check="-"
+  fi
+  [ "$verdict" != ok ] && failed=1
+  printf '%-5s %-46s rc=%-3s %5.1fs %9s B %6s edges %-4s  %s\n' "$verdict" "$label" "$rc" \
+    "$(echo "$t1 - $t0" | bc)" "$size" "$edges" "$check" "$msg"
 }
 
 for f in "$DIR"/*.json; do

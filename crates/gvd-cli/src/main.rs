@@ -58,7 +58,7 @@ struct ComputeArgs {
     /// Split boxes that hold two or more sites until no longer than this (finite, > 0).
     #[arg(long, value_parser = positive_length)]
     max_box: Option<f64>,
-    /// Most boxes the subdivision engine may visit (default: 4194304 + 64 per site).
+    /// Most boxes the subdivision engine may visit (default: 2097152 + 64 per site).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     max_boxes: Option<u64>,
     /// Most polyline points the subdivision engine may write (default: 524288 + 256

@@ -127,38 +127,52 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
     })
 }
 
-/// Refuses `medial_axis` mode where it has no meaning or no engine: the mode keeps the
-/// complex inside the regions that closed sites bound, so a scene without one (no
-/// polygon, closed curve, circle or ellipse) has an empty medial axis, which is
-/// refused rather than written as an empty diagram (nor as the Voronoi diagram the
-/// point and subdivision engines would give); circles and ellipses bound regions, but
-/// only the segment engine computes medial axes so far (polygons).
+/// Refuses `medial_axis` mode where it has no meaning or no engine. The mode keeps the
+/// complex inside the regions that closed sites bound: a scene of sites that bound none
+/// (points, segments, open arcs, polylines, fields) has an empty medial axis, refused
+/// rather than written as an empty diagram (or as the Voronoi diagram the point and
+/// subdivision engines would give). Circles, ellipses and full-circle arcs bound
+/// regions, but no engine computes the medial axis inside them yet. Polygons, curves
+/// (closed, or closing up in a chain of pieces) and algebraic curves pass on.
 fn check_medial_axis(scene: &Scene) -> Result<(), Error> {
     if scene.mode != Mode::MedialAxis {
         return Ok(());
     }
-    let closed = |kind: &SiteKind| match kind {
-        SiteKind::Polygon { .. } | SiteKind::Circle { .. } | SiteKind::Ellipse { .. } => true,
-        SiteKind::Bspline { closed, .. } => *closed,
-        SiteKind::Bezier { control_points, .. } => control_points.first() == control_points.last(),
+    let round = |kind: &SiteKind| match kind {
+        SiteKind::Circle { .. } | SiteKind::Ellipse { .. } => true,
+        SiteKind::Arc {
+            start_angle,
+            end_angle,
+            ..
+        } => crate::scene::arc_sweep(*start_angle, *end_angle) == std::f64::consts::TAU,
         _ => false,
     };
-    match scene.sites.iter().position(|s| closed(&s.kind)) {
-        None => Err(Error::scene(
-            "mode",
-            "'medial_axis' keeps the diagram inside the regions that closed sites bound \
-             (polygons, closed curves), and this scene has none: its medial axis is empty; \
-             use mode 'voronoi' or 'complex'",
-        )),
-        Some(i) if matches!(scene.sites[i].kind, SiteKind::Circle { .. } | SiteKind::Ellipse { .. }) => {
-            Err(Error::Unsupported {
-                site: i,
-                kind: scene.sites[i].kind.name().to_string(),
-                message: "the medial axis inside circles and ellipses is not computed yet (mode 'medial_axis' takes polygons)".into(),
-            })
-        }
-        Some(_) => Ok(()),
+    let may_bound = |kind: &SiteKind| {
+        matches!(
+            kind,
+            SiteKind::Polygon { .. }
+                | SiteKind::Bezier { .. }
+                | SiteKind::Bspline { .. }
+                | SiteKind::Algebraic { .. }
+        )
+    };
+    if let Some(i) = scene.sites.iter().position(|s| round(&s.kind)) {
+        return Err(Error::Unsupported {
+            site: i,
+            kind: scene.sites[i].kind.name().to_string(),
+            message: "the medial axis inside circles, ellipses and full-circle arcs is not computed yet (mode 'medial_axis' takes polygons)".into(),
+        });
     }
+    if scene.sites.iter().any(|s| may_bound(&s.kind)) {
+        return Ok(());
+    }
+    Err(Error::scene(
+        "mode",
+        "'medial_axis' keeps the diagram inside the regions that closed sites bound \
+         (polygons, closed curves), and this scene has none: its medial axis is empty \
+         (a closed polyline is not a region: give it as a polygon); use mode 'voronoi' \
+         or 'complex'",
+    ))
 }
 
 /// Runs an incremental computation and records its time and engine in `stats`.

@@ -1,5 +1,7 @@
 //! Geometric validation of sites with exact orientation predicates: simple polygon rings,
-//! holes inside the outer ring, duplicate point sites.
+//! holes inside the outer ring, duplicate point sites; and the checks against hostile
+//! input: identical sites of any kind, overlapping circles and ellipses, numbers f64
+//! cannot resolve at the scene's epsilon.
 
 use super::{Metric, Site, SiteKind};
 use crate::error::Error;

@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
 
 /// Boxes a run may visit by default, on top of [`BOXES_PER_SITE`] per site. The
 /// corpus's subdivision runs visit at most a few tens per site.
-pub const BASE_BOXES: usize = 1 << 22;
+pub const BASE_BOXES: usize = 1 << 21;
 /// Boxes allowed per site on top of [`BASE_BOXES`].
 pub const BOXES_PER_SITE: usize = 64;
 /// Output polyline points a run may write by default, on top of [`POINTS_PER_SITE`] per

@@ -238,8 +238,9 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Result<Output, Er
         max_box: params.max_box,
         min_box,
         parallel: params.parallel,
+        budget: &budget,
     };
-    let leaves = tree::subdivide(fields, &lattice, &tree_params, &budget);
+    let leaves = tree::subdivide(fields, &lattice, &tree_params);
     budget.check(eps)?;
     let t_subdivide = start.elapsed().as_secs_f64();
 

@@ -120,34 +120,22 @@ pub struct Leaf {
 }
 
 /// Parameters of the subdivision phase.
-#[derive(Clone, Copy, Debug)]
-pub struct Params {
+#[derive(Clone, Copy)]
+pub struct Params<'a> {
     /// Boxes holding two or more sites are split until their longest side is at most this.
     pub max_box: Option<f64>,
     /// The resolution cut-off: boxes this small are not split.
     pub min_box: f64,
     /// Process independent subtrees on rayon's thread pool (same result either way).
     pub parallel: bool,
-}
-
-/// What every box of one run shares.
-struct Run<'a, F> {
-    fields: &'a [F],
-    lattice: &'a Lattice,
-    params: &'a Params,
-    budget: &'a Budget,
+    /// Each box visited takes one; once it is out no box is split again (the leaves are
+    /// then incomplete, and the caller reports the exhausted budget, not a diagram).
+    pub budget: &'a Budget,
 }
 
 /// Runs Alg. 1 and returns the leaves in a deterministic order (depth-first, lower child
-/// first), whatever the number of threads. Each box visited takes one from `budget`;
-/// once it is exhausted no box is split again (the leaves are then incomplete, and the
-/// caller reports the exhausted budget instead of a diagram).
-pub fn subdivide<F: DistanceField>(
-    fields: &[F],
-    lattice: &Lattice,
-    params: &Params,
-    budget: &Budget,
-) -> Vec<Leaf> {
+/// first), whatever the number of threads.
+pub fn subdivide<F: DistanceField>(fields: &[F], lattice: &Lattice, params: &Params) -> Vec<Leaf> {
     let root = lattice.root();
     let aabb = lattice.aabb(&root);
     let sites: Vec<(u32, F::State)> = fields
@@ -156,82 +144,81 @@ pub fn subdivide<F: DistanceField>(
         .map(|(i, f)| (i as u32, f.state(&aabb)))
         .collect();
     let mut out = Vec::new();
-    let run = Run {
-        fields,
-        lattice,
-        params,
-        budget,
-    };
-    run.recurse(root, aabb, sites, &mut out);
+    recurse(fields, lattice, params, root, aabb, sites, &mut out);
     out
 }
 
-impl<F: DistanceField> Run<'_, F> {
-    fn recurse(&self, ib: IBox, aabb: Aabb, sites: Vec<(u32, F::State)>, out: &mut Vec<Leaf>) {
-        if !self.budget.take_box() {
-            return;
-        }
-        let (fields, lattice, params) = (self.fields, self.lattice, self.params);
-        let sites = filter::lower_envelope(fields, &aabb, sites);
-        let size = aabb.longest_side();
-        let leaf = |sites: &[(u32, F::State)], certificate: Certificate, uncertified: bool| Leaf {
-            ib,
-            aabb,
-            sites: sites.iter().map(|s| s.0).collect(),
-            certificate,
-            uncertified,
-        };
-        if sites.len() <= 1 {
-            out.push(leaf(&sites, Certificate::None, false));
-            return;
-        }
-        let too_big = params.max_box.is_some_and(|m| size > m * (1.0 + 1e-9));
-        if !too_big {
-            let certificate = filter::certify(fields, &aabb, &sites);
-            if certificate != Certificate::None {
-                out.push(leaf(&sites, certificate, false));
-                return;
-            }
-        }
-        let axis = if aabb.width() >= aabb.height() { 0 } else { 1 };
-        let split = if size <= params.min_box && !too_big {
-            None
-        } else {
-            ib.split(axis)
-        };
-        let Some((li, ri, mid)) = split else {
-            out.push(leaf(&sites, Certificate::None, true));
-            return;
-        };
-        let at = lattice.point(mid, mid);
-        let (ax, at) = if axis == 0 {
-            (Axis::X, at.x)
-        } else {
-            (Axis::Y, at.y)
-        };
-        let (la, ra) = aabb.split(ax, at);
-        let mut left = Vec::with_capacity(sites.len());
-        let mut right = Vec::with_capacity(sites.len());
-        for (i, s) in &sites {
-            let (l, r) = fields[*i as usize].split(s, &aabb, ax, at);
-            left.push((*i, l));
-            right.push((*i, r));
-        }
-        drop(sites);
-        let fork = params.parallel && (left.len() >= 16 || size > params.min_box * 64.0);
-        #[cfg(not(feature = "parallel"))]
-        let _ = fork; // one thread: the subtrees run in turn below
-        #[cfg(feature = "parallel")]
-        if fork {
-            let mut rout = Vec::new();
-            rayon::join(
-                || self.recurse(li, la, left, out),
-                || self.recurse(ri, ra, right, &mut rout),
-            );
-            out.append(&mut rout);
-            return;
-        }
-        self.recurse(li, la, left, out);
-        self.recurse(ri, ra, right, out);
+fn recurse<F: DistanceField>(
+    fields: &[F],
+    lattice: &Lattice,
+    params: &Params,
+    ib: IBox,
+    aabb: Aabb,
+    sites: Vec<(u32, F::State)>,
+    out: &mut Vec<Leaf>,
+) {
+    if !params.budget.take_box() {
+        return;
     }
+    let sites = filter::lower_envelope(fields, &aabb, sites);
+    let size = aabb.longest_side();
+    let leaf = |sites: &[(u32, F::State)], certificate: Certificate, uncertified: bool| Leaf {
+        ib,
+        aabb,
+        sites: sites.iter().map(|s| s.0).collect(),
+        certificate,
+        uncertified,
+    };
+    if sites.len() <= 1 {
+        out.push(leaf(&sites, Certificate::None, false));
+        return;
+    }
+    let too_big = params.max_box.is_some_and(|m| size > m * (1.0 + 1e-9));
+    if !too_big {
+        let certificate = filter::certify(fields, &aabb, &sites);
+        if certificate != Certificate::None {
+            out.push(leaf(&sites, certificate, false));
+            return;
+        }
+    }
+    let axis = if aabb.width() >= aabb.height() { 0 } else { 1 };
+    let split = if size <= params.min_box && !too_big {
+        None
+    } else {
+        ib.split(axis)
+    };
+    let Some((li, ri, mid)) = split else {
+        out.push(leaf(&sites, Certificate::None, true));
+        return;
+    };
+    let at = lattice.point(mid, mid);
+    let (ax, at) = if axis == 0 {
+        (Axis::X, at.x)
+    } else {
+        (Axis::Y, at.y)
+    };
+    let (la, ra) = aabb.split(ax, at);
+    let mut left = Vec::with_capacity(sites.len());
+    let mut right = Vec::with_capacity(sites.len());
+    for (i, s) in &sites {
+        let (l, r) = fields[*i as usize].split(s, &aabb, ax, at);
+        left.push((*i, l));
+        right.push((*i, r));
+    }
+    drop(sites);
+    let fork = params.parallel && (left.len() >= 16 || size > params.min_box * 64.0);
+    #[cfg(not(feature = "parallel"))]
+    let _ = fork; // one thread: the subtrees run in turn below
+    #[cfg(feature = "parallel")]
+    if fork {
+        let mut rout = Vec::new();
+        rayon::join(
+            || recurse(fields, lattice, params, li, la, left, out),
+            || recurse(fields, lattice, params, ri, ra, right, &mut rout),
+        );
+        out.append(&mut rout);
+        return;
+    }
+    recurse(fields, lattice, params, li, la, left, out);
+    recurse(fields, lattice, params, ri, ra, right, out);
 }

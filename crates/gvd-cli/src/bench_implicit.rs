@@ -81,13 +81,9 @@ fn time(scene: &Scene, fields: FieldOptions, parallel: bool, repeat: usize) -> (
     for _ in 0..repeat {
         let t = Instant::now();
         let f = SiteField::for_scene_with(scene, &fields).expect("benchmark scenes are valid");
-        let params = gvd::internals::SubdivisionParams {
-            domain: scene.domain(),
-            epsilon: scene.epsilon(),
-            max_box: None,
-            parallel,
-        };
-        let out = gvd::internals::subdivide(&f, &params);
+        let params =
+            gvd::internals::SubdivisionParams::for_scene(scene, None, parallel, Default::default());
+        let out = gvd::internals::subdivide(&f, &params).expect("benchmark scenes fit the limits");
         best = best.min(t.elapsed().as_secs_f64());
         boxes = out
             .complex

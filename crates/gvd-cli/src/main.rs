@@ -2,13 +2,20 @@
 
 mod bench;
 mod bench_implicit;
+mod output;
 
 use anyhow::{bail, Context, Result};
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use gvd::{Scene, VoronoiComplex};
-use std::io::Write;
+use output::Outputs;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+/// Most worker threads `--threads` accepts.
+const MAX_THREADS: usize = 256;
+/// Most characters of an error message printed (a message may quote the input).
+const MAX_MESSAGE: usize = 1000;
 
 #[derive(Parser)]
 #[command(
@@ -24,71 +31,99 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Compute the diagram of a scene; write it as JSON and/or SVG.
-    Compute {
-        /// The scene (JSON, see SCENE_FORMAT.md).
-        scene: PathBuf,
-        /// Write the diagram here (JSON).
-        #[arg(long)]
-        json: Option<PathBuf>,
-        /// Write a picture here (SVG).
-        #[arg(long)]
-        svg: Option<PathBuf>,
-        /// Draw the subdivision boxes in the picture.
-        #[arg(long)]
-        boxes: bool,
-        /// Split boxes that hold two or more sites until no longer than this.
-        #[arg(long)]
-        max_box: Option<f64>,
-        /// Worker threads (default: all cores; 1 = sequential).
-        #[arg(long)]
-        threads: Option<usize>,
-        /// Algorithm family: `auto` takes the incremental engine for scenes of Euclidean
-        /// points and the subdivision engine otherwise.
-        #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
-        engine: EngineArg,
-        /// Give every edge of the incremental engine its exact bisector: `bisector`,
-        /// pieces in Held's offset-parameter form with their clearance ranges.
-        #[arg(long)]
-        bisectors: bool,
-    },
+    Compute(ComputeArgs),
     /// Offset curves (lines and arcs) at a distance from the sites, derived from the
     /// diagram (in `complex` mode for a `voronoi` scene; inside the region in
     /// `medial_axis` mode: a pocket).
-    Offset {
-        /// The scene (JSON, see SCENE_FORMAT.md).
-        scene: PathBuf,
-        /// The offset distance (finite, > 0).
-        #[arg(long, allow_negative_numbers = true)]
-        distance: f64,
-        /// Write the curves here (JSON, SCENE_FORMAT.md "Offsets").
-        #[arg(long)]
-        json: Option<PathBuf>,
-        /// Write a picture here (SVG): sites, faint diagram edges, offset curves.
-        #[arg(long)]
-        svg: Option<PathBuf>,
-    },
+    Offset(OffsetArgs),
     /// Check a diagram against its scene by brute force (independent of the engines).
-    Verify {
-        scene: PathBuf,
-        diagram: PathBuf,
-        /// Completeness grid size (N × N).
-        #[arg(long, default_value_t = 512)]
-        grid: usize,
-        /// Tolerance as a multiple of the scene's epsilon.
-        #[arg(long, default_value_t = 1.0)]
-        slack: f64,
-    },
+    Verify(VerifyArgs),
     /// Reproduce a paper's table of timings and box counts.
-    Bench {
-        /// Which table: `emiris-table1`.
-        table: String,
-        /// Also run 10^4 and 10^5 Euclidean sites and the multi-core speed-up.
-        #[arg(long)]
-        large: bool,
-        /// Repetitions per row (the best time is reported).
-        #[arg(long, default_value_t = 3)]
-        repeat: usize,
-    },
+    Bench(BenchArgs),
+}
+
+#[derive(Args)]
+struct ComputeArgs {
+    /// The scene (JSON, see SCENE_FORMAT.md; `-` reads standard input).
+    scene: PathBuf,
+    /// Write the diagram here (JSON; `-` for standard output).
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Write a picture here (SVG; `-` for standard output).
+    #[arg(long)]
+    svg: Option<PathBuf>,
+    /// Draw the subdivision boxes in the picture.
+    #[arg(long)]
+    boxes: bool,
+    /// Split boxes that hold two or more sites until no longer than this (finite, > 0).
+    #[arg(long, value_parser = positive_length)]
+    max_box: Option<f64>,
+    /// Most boxes the subdivision engine may visit (default: 2097152 + 64 per site).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    max_boxes: Option<u64>,
+    /// Most polyline points the subdivision engine may write (default: 524288 + 256
+    /// per site).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    max_points: Option<u64>,
+    /// Worker threads (default: all cores; 1 = sequential; at most 256).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]
+    threads: Option<u64>,
+    /// Algorithm family: `auto` takes the incremental engine for scenes of Euclidean
+    /// points and the subdivision engine otherwise.
+    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
+    engine: EngineArg,
+    /// Give every edge of the incremental engine its exact bisector: `bisector`,
+    /// pieces in Held's offset-parameter form with their clearance ranges.
+    #[arg(long)]
+    bisectors: bool,
+}
+
+#[derive(Args)]
+struct OffsetArgs {
+    /// The scene (JSON, see SCENE_FORMAT.md; `-` reads standard input).
+    scene: PathBuf,
+    /// The offset distance (finite, > 0).
+    #[arg(long, allow_negative_numbers = true)]
+    distance: f64,
+    /// Write the curves here (JSON, SCENE_FORMAT.md "Offsets"; `-` for standard output).
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Write a picture here (SVG): sites, faint diagram edges, offset curves.
+    #[arg(long)]
+    svg: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct VerifyArgs {
+    scene: PathBuf,
+    diagram: PathBuf,
+    /// Completeness grid size (N × N, 2 ≤ N ≤ 4096).
+    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u64).range(2..=gvd::verify::MAX_GRID as u64))]
+    grid: u64,
+    /// Tolerance as a multiple of the scene's epsilon (finite, > 0).
+    #[arg(long, default_value_t = 1.0, value_parser = positive_length)]
+    slack: f64,
+}
+
+#[derive(Args)]
+struct BenchArgs {
+    /// Which table: `emiris-table1` or `implicit`.
+    table: String,
+    /// Also run 10^4 and 10^5 Euclidean sites and the multi-core speed-up.
+    #[arg(long)]
+    large: bool,
+    /// Repetitions per row (the best time is reported).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    repeat: u64,
+}
+
+/// A finite number > 0 (NaN, infinities, zero and negatives are refused).
+fn positive_length(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        Ok(x) => Err(format!("must be a finite number > 0, found {x}")),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -112,7 +147,7 @@ fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("gvd: error: {e:#}");
+            eprintln!("gvd: error: {}", clip(&format!("{e:#}")));
             ExitCode::from(2)
         }
     }
@@ -120,140 +155,175 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Compute {
-            scene,
-            json,
-            svg,
-            boxes,
-            max_box,
-            threads,
-            engine,
-            bisectors,
-        } => {
-            if json.is_none() && svg.is_none() {
-                bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
-            }
-            if let Some(n) = threads {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(n.max(1))
-                    .build_global()?;
-            }
-            let sc = read_scene(&scene)?;
-            let options = gvd::Options {
-                engine: engine.into(),
-                parallel: threads != Some(1),
-                subdivision: gvd::SubdivisionOptions {
-                    max_box,
-                    ..Default::default()
-                },
-                incremental: gvd::IncrementalOptions { bisectors },
-            };
-            let out = gvd::compute_with_boxes(&sc, &options)
-                .with_context(|| format!("{}", scene.display()))?;
-            let d = &out.complex;
-            eprintln!(
-                "{}: {} vertices, {} edges, {} boxes ({} uncertified) in {:.3} s",
-                scene.display(),
-                d.vertices.len(),
-                d.edges.len(),
-                stat(d, "boxes"),
-                stat(d, "uncertified_boxes"),
-                d.stats
-                    .get("seconds")
-                    .and_then(|v| v.as_f64())
-                    .unwrap_or(0.0)
-            );
-            if let Some(path) = json {
-                write_atomic_with(&path, |w| gvd::io::json::write_diagram_to(d, w))?;
-            }
-            if let Some(path) = svg {
-                let opts = gvd::io::svg::SvgOptions {
-                    boxes: if boxes { out.boxes.clone() } else { Vec::new() },
-                    ..Default::default()
-                };
-                write_atomic(&path, &gvd::io::svg::render_svg(&sc, d, &opts))?;
-            }
-            // The process ends here: freeing millions of small vectors one by one
-            // (0.5 s at 10^6 points) is slower than the kernel taking the pages back.
-            std::mem::forget(out);
-            std::mem::forget(sc);
-            Ok(ExitCode::SUCCESS)
-        }
-        Command::Offset {
-            scene,
-            distance,
-            json,
-            svg,
-        } => {
-            if json.is_none() && svg.is_none() {
-                bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
-            }
-            gvd::offset::check_distance(distance)?;
-            let sc = read_scene(&scene)?;
-            let (off, diagram) = gvd::offset::offset_scene(&sc, distance, &Default::default())
-                .with_context(|| format!("{}", scene.display()))?;
-            eprintln!(
-                "{}: offset at {distance}: {} curves ({} closed), {} primitives in {:.3} s",
-                scene.display(),
-                off.curves.len(),
-                off.curves.iter().filter(|c| c.closed).count(),
-                off.curves.iter().map(|c| c.primitives.len()).sum::<usize>(),
-                off.stats
-                    .get("seconds")
-                    .and_then(|v| v.as_f64())
-                    .unwrap_or(0.0)
-            );
-            if let Some(path) = json {
-                write_atomic(&path, &off.to_json())?;
-            }
-            if let Some(path) = svg {
-                let svg = gvd::io::svg::render_offset_svg(&sc, &diagram, &off, &Default::default());
-                write_atomic(&path, &svg)?;
-            }
-            Ok(ExitCode::SUCCESS)
-        }
-        Command::Verify {
-            scene,
-            diagram,
-            grid,
-            slack,
-        } => {
-            let sc = read_scene(&scene)?;
-            let text = std::fs::read_to_string(&diagram)
-                .with_context(|| format!("cannot read {}", diagram.display()))?;
-            let d: VoronoiComplex = gvd::io::json::read_diagram(&text)
-                .with_context(|| format!("{}", diagram.display()))?;
-            let opts = gvd::verify::VerifyOptions {
-                grid,
-                slack,
-                ..Default::default()
-            };
-            let report = gvd::verify::verify(&sc, &d, &opts)?;
-            for p in &report.problems {
-                println!("  {p}");
-            }
-            println!("{}", report.summary_line());
-            Ok(if report.passed {
-                ExitCode::SUCCESS
-            } else {
-                ExitCode::from(1)
-            })
-        }
-        Command::Bench {
-            table,
-            large,
-            repeat,
-        } => match table.as_str() {
-            "emiris-table1" => {
-                bench::emiris_table1(large, repeat.max(1));
-                Ok(ExitCode::SUCCESS)
-            }
-            "implicit" => {
-                bench_implicit::implicit(large, repeat.max(1));
-                Ok(ExitCode::SUCCESS)
-            }
-            other => bail!("unknown table '{other}' (known: emiris-table1)"),
+        Command::Compute(args) => compute(args),
+        Command::Offset(args) => offset(args),
+        Command::Verify(args) => verify(args),
+        Command::Bench(args) => bench(args),
+    }
+}
+
+/// `gvd compute`: the diagram, written as JSON and/or SVG.
+fn compute(args: ComputeArgs) -> Result<ExitCode> {
+    let mut outputs = outputs_for(&args.scene, &[&args.json, &args.svg])?;
+    if let Some(n) = args.threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n as usize)
+            .build_global()
+            .context("cannot start the worker threads")?;
+    }
+    let sc = read_scene(&args.scene)?;
+    let options = gvd::Options {
+        engine: args.engine.into(),
+        parallel: args.threads != Some(1),
+        subdivision: gvd::SubdivisionOptions {
+            max_box: args.max_box,
+            limits: gvd::Limits {
+                max_boxes: args.max_boxes.map(saturating_usize),
+                max_points: args.max_points.map(saturating_usize),
+            },
+            ..Default::default()
         },
+        incremental: gvd::IncrementalOptions {
+            bisectors: args.bisectors,
+        },
+    };
+    let out = gvd::compute_with_boxes(&sc, &options)
+        .with_context(|| format!("{}", args.scene.display()))?;
+    let d = &out.complex;
+    let seconds = d.stats.get("seconds").and_then(|v| v.as_f64());
+    eprintln!(
+        "{}: {} vertices, {} edges, {} boxes ({} uncertified) in {:.3} s",
+        args.scene.display(),
+        d.vertices.len(),
+        d.edges.len(),
+        stat(d, "boxes"),
+        stat(d, "uncertified_boxes"),
+        seconds.unwrap_or(0.0)
+    );
+    if let Some(asked) = d.stats.get("epsilon_floored_from").and_then(|v| v.as_f64()) {
+        eprintln!(
+            "gvd: warning: epsilon {asked:e} is finer than the subdivision resolves in this domain; the diagram is at resolution {}",
+            stat(d, "resolution")
+        );
+    }
+    if let Some(path) = &args.json {
+        outputs.write(path, |w| gvd::io::json::write_diagram_to(d, &mut &mut *w))?;
+    }
+    if let Some(path) = &args.svg {
+        let opts = gvd::io::svg::SvgOptions {
+            boxes: if args.boxes {
+                out.boxes.clone()
+            } else {
+                Vec::new()
+            },
+            ..Default::default()
+        };
+        let svg = gvd::io::svg::render_svg(&sc, d, &opts);
+        outputs.write(path, |w| w.write_all(svg.as_bytes()))?;
+    }
+    outputs.commit()?;
+    // The process ends here: freeing millions of small vectors one by one
+    // (0.5 s at 10^6 points) is slower than the kernel taking the pages back.
+    std::mem::forget(out);
+    std::mem::forget(sc);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `gvd offset`: offset curves from the diagram, written as JSON and/or SVG.
+fn offset(args: OffsetArgs) -> Result<ExitCode> {
+    let mut outputs = outputs_for(&args.scene, &[&args.json, &args.svg])?;
+    gvd::offset::check_distance(args.distance)?;
+    let sc = read_scene(&args.scene)?;
+    let (off, diagram) = gvd::offset::offset_scene(&sc, args.distance, &Default::default())
+        .with_context(|| format!("{}", args.scene.display()))?;
+    eprintln!(
+        "{}: offset at {}: {} curves ({} closed), {} primitives in {:.3} s",
+        args.scene.display(),
+        args.distance,
+        off.curves.len(),
+        off.curves.iter().filter(|c| c.closed).count(),
+        off.curves.iter().map(|c| c.primitives.len()).sum::<usize>(),
+        off.stats
+            .get("seconds")
+            .and_then(|v| v.as_f64())
+            .unwrap_or(0.0)
+    );
+    if let Some(path) = &args.json {
+        let json = off.to_json();
+        outputs.write(path, |w| w.write_all(json.as_bytes()))?;
+    }
+    if let Some(path) = &args.svg {
+        let svg = gvd::io::svg::render_offset_svg(&sc, &diagram, &off, &Default::default());
+        outputs.write(path, |w| w.write_all(svg.as_bytes()))?;
+    }
+    outputs.commit()?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `gvd verify`: the brute-force check; exit 1 when the diagram fails it.
+fn verify(args: VerifyArgs) -> Result<ExitCode> {
+    let sc = read_scene(&args.scene)?;
+    let text = read_text(&args.diagram)?;
+    let d: VoronoiComplex = gvd::io::json::read_diagram(&text)
+        .with_context(|| format!("{}", args.diagram.display()))?;
+    let opts = gvd::verify::VerifyOptions {
+        grid: saturating_usize(args.grid),
+        slack: args.slack,
+        ..Default::default()
+    };
+    let report = gvd::verify::verify(&sc, &d, &opts)?;
+    for w in &report.warnings {
+        eprintln!("gvd: warning: {w}");
+    }
+    for p in &report.problems {
+        println!("  {p}");
+    }
+    println!("{}", report.summary_line());
+    Ok(if report.passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+/// `gvd bench`: a paper's table.
+fn bench(args: BenchArgs) -> Result<ExitCode> {
+    let repeat = saturating_usize(args.repeat);
+    match args.table.as_str() {
+        "emiris-table1" => bench::emiris_table1(args.large, repeat),
+        "implicit" => bench_implicit::implicit(args.large, repeat),
+        other => bail!(
+            "unknown table '{}' (known: emiris-table1, implicit)",
+            clip(other)
+        ),
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The outputs of a command reading `scene`, each checked (see [`output`]) before any
+/// work; at least one is required.
+fn outputs_for(scene: &Path, paths: &[&Option<PathBuf>]) -> Result<Outputs> {
+    let mut outputs = Outputs::new(&[scene]);
+    let mut any = false;
+    for path in paths.iter().copied().flatten() {
+        outputs.claim(path)?;
+        any = true;
+    }
+    if !any {
+        bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
+    }
+    Ok(outputs)
+}
+
+fn saturating_usize(n: u64) -> usize {
+    usize::try_from(n).unwrap_or(usize::MAX)
+}
+
+/// At most [`MAX_MESSAGE`] characters of `s`.
+fn clip(s: &str) -> String {
+    match s.char_indices().nth(MAX_MESSAGE) {
+        Some((k, _)) => format!("{}… ({} characters cut)", &s[..k], s[k..].chars().count()),
+        None => s.to_string(),
     }
 }
 
@@ -264,54 +334,19 @@ fn stat(d: &VoronoiComplex, key: &str) -> String {
         .unwrap_or_else(|| "-".into())
 }
 
+/// The text of `path`, or of standard input for `-`.
+fn read_text(path: &Path) -> Result<String> {
+    if path.as_os_str() == "-" {
+        let mut text = String::new();
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .context("cannot read standard input")?;
+        return Ok(text);
+    }
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+}
+
 fn read_scene(path: &Path) -> Result<Scene> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = read_text(path)?;
     Scene::from_json(&text).with_context(|| format!("{}", path.display()))
-}
-
-/// Writes through a temporary file in the same directory and renames it into place, so
-/// that a failure never leaves a half-written output.
-fn write_atomic(path: &Path, contents: &str) -> Result<()> {
-    write_atomic_with(path, |w| w.write_all(contents.as_bytes()))
-}
-
-/// Writes a file through `write` (into a buffered temporary file, then renamed), so a
-/// large output is never held whole in memory.
-///
-/// A symbolic link is followed, so the link stays and its target is replaced. A path
-/// that is not a regular file (`/dev/stdout`, `/dev/null`, a FIFO) is written in place:
-/// renaming over it would replace the device with a plain file.
-fn write_atomic_with(
-    path: &Path,
-    write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>,
-) -> Result<()> {
-    let target = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-    let in_place = std::fs::metadata(&target).is_ok_and(|m| !m.is_file());
-    let tmp = if in_place {
-        target.clone()
-    } else {
-        let dir = target
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        let name = target.file_name().context("output path has no file name")?;
-        dir.join(format!(".{}.tmp", name.to_string_lossy()))
-    };
-    let written = std::fs::File::create(&tmp).and_then(|file| {
-        let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
-        write(&mut w)?;
-        w.flush()
-    });
-    if let Err(e) = written {
-        if !in_place {
-            let _ = std::fs::remove_file(&tmp);
-        }
-        return Err(e).with_context(|| format!("cannot write {}", path.display()));
-    }
-    if !in_place {
-        std::fs::rename(&tmp, &target)
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
-    Ok(())
 }

@@ -199,22 +199,29 @@ fn output_into_a_fifo_keeps_the_fifo() {
     std::fs::remove_file(&fifo).unwrap();
 }
 
-/// A symbolic link is followed: the link stays and its target gets the output.
+/// A symbolic link is never written through: refused, the link and its target kept.
 #[cfg(unix)]
 #[test]
-fn output_through_a_symlink_replaces_the_target() {
+fn output_through_a_symlink_is_refused() {
     let (target, link) = (scratch("linked-target.svg"), scratch("link.svg"));
     let _ = std::fs::remove_file(&link);
     std::fs::write(&target, "old").unwrap();
     std::os::unix::fs::symlink(&target, &link).unwrap();
-    compute_ok("points-mixed-0030.json", &["--svg".as_ref(), link.as_ref()]);
+    let scene = repo("examples/scenes/points-mixed-0030.json");
+    let out = gvd()
+        .arg("compute")
+        .arg(&scene)
+        .arg("--svg")
+        .arg(&link)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("symbolic link"));
     assert!(std::fs::symlink_metadata(&link)
         .unwrap()
         .file_type()
         .is_symlink());
-    assert!(std::fs::read_to_string(&target)
-        .unwrap()
-        .starts_with("<svg"));
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "old");
 }
 
 /// `--bisectors` adds each edge's exact bisector to the JSON (and only when asked).

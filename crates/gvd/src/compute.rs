@@ -7,8 +7,8 @@ use crate::geom::Aabb;
 use crate::geom::{Point, PointGrid};
 use crate::incremental;
 use crate::scene::Scene;
-use crate::scene::{Metric, SiteKind};
-use crate::site::{FieldOptions, SiteField};
+use crate::scene::{Metric, Mode, SiteKind};
+use crate::site::FieldOptions;
 use crate::subdivision;
 
 /// Which algorithm family computes the diagram.
@@ -47,6 +47,9 @@ pub struct SubdivisionOptions {
     pub max_box: Option<f64>,
     /// Choices among equivalent distance fields (closed forms or the general paths).
     pub fields: FieldOptions,
+    /// The boxes and output points the subdivision engine may use (defaults grow with
+    /// the number of sites); running out gives [`Error::Budget`].
+    pub limits: subdivision::Limits,
 }
 
 /// Knobs of the incremental engine (SI92, Hel01).
@@ -84,6 +87,7 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 
 /// [`compute`], also returning the subdivision's leaves (none for the incremental engine).
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
+    check_medial_axis(scene)?;
     let points = euclidean_points(scene);
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {
@@ -128,18 +132,65 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         }
         _ => {}
     }
-    let fields = SiteField::for_scene_with(scene, &options.subdivision.fields)?;
-    let params = subdivision::Params {
-        domain: scene.domain(),
-        epsilon: scene.epsilon(),
-        max_box: options.subdivision.max_box,
-        parallel: options.parallel,
-    };
-    let out = subdivision::run(&fields, &params);
+    let params = subdivision::Params::for_scene(
+        scene,
+        options.subdivision.max_box,
+        options.parallel,
+        options.subdivision.limits,
+    );
+    let out = subdivision::run_scene(scene, &options.subdivision.fields, &params)?;
     Ok(Computation {
         complex: out.complex,
         boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
     })
+}
+
+/// Refuses `medial_axis` mode where it has no meaning or no engine. The mode keeps the
+/// complex inside the regions that closed sites bound: a scene of sites that bound none
+/// (points, segments, open arcs, polylines, fields) has an empty medial axis, refused
+/// rather than written as an empty diagram (or as the Voronoi diagram the point and
+/// subdivision engines would give). Circles, ellipses and full-circle arcs bound
+/// regions, but no engine computes the medial axis inside them yet. Polygons, curves
+/// (closed, or closing up in a chain of pieces) and algebraic curves pass on.
+fn check_medial_axis(scene: &Scene) -> Result<(), Error> {
+    if scene.mode() != Mode::MedialAxis {
+        return Ok(());
+    }
+    let round = |kind: &SiteKind| match kind {
+        SiteKind::Circle { .. } | SiteKind::Ellipse { .. } => true,
+        SiteKind::Arc {
+            start_angle,
+            end_angle,
+            ..
+        } => crate::geom::arc::sweep(*start_angle, *end_angle) == std::f64::consts::TAU,
+        _ => false,
+    };
+    let may_bound = |kind: &SiteKind| {
+        matches!(
+            kind,
+            SiteKind::Polygon { .. }
+                | SiteKind::Bezier { .. }
+                | SiteKind::Bspline { .. }
+                | SiteKind::Algebraic { .. }
+        )
+    };
+    if let Some(i) = scene.sites().iter().position(|s| round(&s.kind)) {
+        return Err(Error::Unsupported {
+            site: i,
+            kind: scene.sites()[i].kind.name().to_string(),
+            message: "the medial axis inside circles, ellipses and full-circle arcs is not computed yet (mode 'medial_axis' takes polygons)".into(),
+        });
+    }
+    if scene.sites().iter().any(|s| may_bound(&s.kind)) {
+        return Ok(());
+    }
+    Err(Error::scene(
+        "mode",
+        "'medial_axis' keeps the diagram inside the regions that closed sites bound \
+         (polygons, closed curves), and this scene has none: its medial axis is empty \
+         (a closed polyline is not a region: give it as a polygon); use mode 'voronoi' \
+         or 'complex'",
+    ))
 }
 
 /// Runs an incremental computation and records its time and engine in `stats`.

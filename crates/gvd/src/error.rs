@@ -52,6 +52,24 @@ pub enum Error {
     /// A diagram file could not be read.
     #[error("diagram: {0}")]
     Diagram(String),
+    /// An option of a computation or a check is out of its range.
+    #[error("option '{option}': {message}")]
+    InvalidOption {
+        /// The option's name.
+        option: String,
+        /// Why it was refused.
+        message: String,
+    },
+    /// A computation reached a work limit (`what`: "boxes" or "points") before it ended.
+    #[error("{message}")]
+    Budget {
+        /// What ran out: "boxes" or "points".
+        what: String,
+        /// The limit that was reached.
+        limit: usize,
+        /// What happened and which option raises the limit.
+        message: String,
+    },
 }
 
 impl Error {

@@ -435,7 +435,10 @@ impl Parser<'_> {
             _ => {
                 return Err(self.err_at(
                     start,
-                    format!("exponent {digits} exceeds the maximum {MAX_EXPONENT}"),
+                    format!(
+                        "exponent {} exceeds the maximum {MAX_EXPONENT}",
+                        excerpt(digits)
+                    ),
                 ))
             }
         };
@@ -522,8 +525,16 @@ impl Parser<'_> {
         let text = std::str::from_utf8(&self.s[start..self.pos]).unwrap_or("");
         match text.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(Poly::constant(v)),
-            _ => Err(self.err_at(start, format!("number '{text}' is out of range"))),
+            _ => Err(self.err_at(start, format!("number '{}' is out of range", excerpt(text)))),
         }
+    }
+}
+
+/// At most 40 bytes of a run of ASCII digits and signs, for messages (`…` marks a cut).
+fn excerpt(text: &str) -> String {
+    match text.get(..40) {
+        Some(head) if head.len() < text.len() => format!("{head}… ({} characters)", text.len()),
+        _ => text.to_string(),
     }
 }
 

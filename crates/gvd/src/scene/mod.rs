@@ -378,6 +378,11 @@ impl Scene {
     pub fn sites(&self) -> &[Site] {
         &self.sites
     }
+    /// The sites, for the engines' exact rewrites of a scene (a nearly round ellipse as
+    /// its circle); whatever they write must pass the site checks.
+    pub(crate) fn sites_mut(&mut self) -> &mut [Site] {
+        &mut self.sites
+    }
     /// The same scene in another mode (every mode accepts the same sites).
     pub fn with_mode(mut self, mode: Mode) -> Scene {
         self.mode = mode;
@@ -433,15 +438,20 @@ impl SceneBuilder {
     pub fn is_empty(&self) -> bool {
         self.sites.is_empty()
     }
-    /// The scene, after the checks between sites (no duplicate point sites).
+    /// The scene, after the checks between sites: no duplicate sites, no overlapping
+    /// circles or ellipses, no number that f64 cannot resolve at the scene's epsilon.
     pub fn build(self) -> Result<Scene, Error> {
         if let Some((i, j)) = validate::duplicate_point(&self.sites) {
             return Err(Error::site(i, "at", format!("duplicate of site {j}")));
         }
+        let epsilon = self
+            .epsilon
+            .unwrap_or_else(|| Scene::default_epsilon(&self.domain));
+        validate::duplicate_site(&self.sites)?;
+        validate::check_precision(&self.domain, epsilon, &self.sites)?;
+        validate::overlapping_ovals(&self.sites)?;
         Ok(Scene {
-            epsilon: self
-                .epsilon
-                .unwrap_or_else(|| Scene::default_epsilon(&self.domain)),
+            epsilon,
             domain: self.domain,
             mode: self.mode,
             sites: self.sites,

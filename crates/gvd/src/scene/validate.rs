@@ -1,10 +1,13 @@
 //! Geometric validation of sites with exact orientation predicates: simple polygon rings,
-//! holes inside the outer ring, duplicate point sites.
+//! holes inside the outer ring, duplicate point sites; and the checks against hostile
+//! input: identical sites of any kind, overlapping circles and ellipses, numbers f64
+//! cannot resolve at the scene's epsilon.
 
-use super::{Site, SiteKind};
+use super::{Metric, Site, SiteKind};
+use crate::error::Error;
 use crate::geom::predicates::orientation as orient;
 use crate::geom::ring::winding_number;
-use crate::geom::Point;
+use crate::geom::{Aabb, Point};
 use std::cmp::Ordering;
 
 /// Whether `p`, known to be collinear with segment `ab`, lies on the closed segment.
@@ -195,6 +198,361 @@ pub(super) fn duplicate_point(sites: &[Site]) -> Option<(usize, usize)> {
         }
     }
     first
+}
+
+/// The first site (not a point: [`duplicate_point`] takes those) identical to an
+/// earlier one: same kind and same data (equations compared as polynomials, so
+/// `x^2+y^2` repeats `y^2 + x^2`). Two identical sites tie everywhere: their bisector
+/// is the whole plane.
+pub(crate) fn duplicate_site(sites: &[Site]) -> Result<(), Error> {
+    use std::hash::{Hash, Hasher};
+    let key = |kind: &SiteKind| {
+        let mut h = std::hash::DefaultHasher::new();
+        kind.name().hash(&mut h);
+        match equation_of(kind) {
+            Some(poly) => format!("{poly:?}").hash(&mut h),
+            None => first_numbers(kind)
+                .map(|x| (x + 0.0).to_bits())
+                .hash(&mut h),
+        }
+        h.finish()
+    };
+    let mut keyed: Vec<(u64, usize)> = sites
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !matches!(s.kind, SiteKind::Point { .. }))
+        .map(|(i, s)| (key(&s.kind), i))
+        .collect();
+    keyed.sort_unstable();
+    let same = |a: &SiteKind, b: &SiteKind| match (a, b) {
+        (
+            SiteKind::Algebraic {
+                equation: e,
+                clip: c,
+            },
+            SiteKind::Algebraic {
+                equation: f,
+                clip: d,
+            },
+        ) => e.poly == f.poly && c == d,
+        _ => match (equation_of(a), equation_of(b)) {
+            (Some(p), Some(q)) => a.name() == b.name() && p == q,
+            _ => a == b,
+        },
+    };
+    let mut first: Option<(usize, usize)> = None;
+    for run in keyed.chunk_by(|a, b| a.0 == b.0).filter(|r| r.len() > 1) {
+        for (k, &(_, i)) in run.iter().enumerate().skip(1) {
+            let earlier = run[..k]
+                .iter()
+                .find(|&&(_, j)| same(&sites[j].kind, &sites[i].kind));
+            if let Some(&(_, j)) = earlier {
+                if first.is_none_or(|(f, _)| i < f) {
+                    first = Some((i, j));
+                }
+                break;
+            }
+        }
+    }
+    match first {
+        None => Ok(()),
+        Some((i, j)) => Err(Error::site(
+            i,
+            defining_field(&sites[i].kind),
+            format!(
+                "identical to site {j} (a duplicate {}: the two tie everywhere)",
+                sites[i].kind.name()
+            ),
+        )),
+    }
+}
+
+/// The polynomial of a site given by an equation.
+fn equation_of(kind: &SiteKind) -> Option<&crate::num::poly::Poly> {
+    match kind {
+        SiteKind::Algebraic { equation, .. }
+        | SiteKind::Field { equation }
+        | SiteKind::ImplicitField { equation } => Some(&equation.poly),
+        _ => None,
+    }
+}
+
+/// A few of the numbers that define a site (for grouping candidates of duplicates).
+fn first_numbers(kind: &SiteKind) -> [f64; 3] {
+    let p = |q: &Point, r: f64| [q.x, q.y, r];
+    match kind {
+        SiteKind::Point { at, .. } => p(at, 0.0),
+        SiteKind::Circle { center, radius } | SiteKind::Arc { center, radius, .. } => {
+            p(center, *radius)
+        }
+        SiteKind::Ellipse {
+            center, semi_axes, ..
+        } => p(center, semi_axes[0]),
+        SiteKind::Segment { from, to } => p(from, to.x),
+        SiteKind::Polyline { points } => points.first().map_or([0.0; 3], |q| p(q, 0.0)),
+        SiteKind::Polygon { rings } => rings
+            .first()
+            .and_then(|r| r.first())
+            .map_or([0.0; 3], |q| p(q, 0.0)),
+        SiteKind::Bezier { control_points, .. } | SiteKind::Bspline { control_points, .. } => {
+            control_points.first().map_or([0.0; 3], |q| p(q, 0.0))
+        }
+        SiteKind::Algebraic { .. } | SiteKind::Field { .. } | SiteKind::ImplicitField { .. } => {
+            [0.0; 3]
+        }
+    }
+}
+
+/// The field a message about the whole site names.
+fn defining_field(kind: &SiteKind) -> &'static str {
+    match kind {
+        SiteKind::Point { .. } => "at",
+        SiteKind::Circle { .. } | SiteKind::Ellipse { .. } | SiteKind::Arc { .. } => "center",
+        SiteKind::Segment { .. } => "from",
+        SiteKind::Polyline { .. } => "points",
+        SiteKind::Polygon { .. } => "rings",
+        SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => "control_points",
+        SiteKind::Algebraic { .. } | SiteKind::Field { .. } | SiteKind::ImplicitField { .. } => {
+            "equation"
+        }
+    }
+}
+
+/// How much coarser than epsilon f64 may resolve a scene's numbers. A coordinate or a
+/// length `x` is known to `|x|·2^-52` (its ulp); an epsilon somewhat finer than that is
+/// floored by the engines (the subdivision reports `epsilon_floored_from`), but a number
+/// whose ulp exceeds `COARSEST` epsilons leaves nothing the diagram could resolve: a
+/// segment end at 1e308 with epsilon 1e-3 keeps nothing of the segment's direction
+/// inside a unit domain.
+const COARSEST: f64 = 64.0;
+
+/// Checks that f64 can resolve the scene at its epsilon: the domain's coordinates, each
+/// site's coordinates, radii and semi-axes, arc angles (times the radius), and the
+/// weights of the quadratic metrics (a power weight `w` enters as `w²`, the others as
+/// they are, against the field's slope of about the domain's size). Names the site and
+/// field of the first number too large.
+pub(crate) fn check_precision(domain: &Aabb, epsilon: f64, sites: &[Site]) -> Result<(), Error> {
+    let ulp = |x: f64| x.abs() * f64::EPSILON;
+    let limit = COARSEST * epsilon;
+    let extent = domain.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if ulp(extent) > limit {
+        return Err(Error::scene(
+            "epsilon",
+            format!(
+                "epsilon {epsilon:e} is far finer than f64 resolves in this domain (coordinates up to {extent:e} are spaced {:e}); the finest epsilon accepted here is {:e}",
+                ulp(extent),
+                ulp(extent) / COARSEST
+            ),
+        ));
+    }
+    // a field value `v` is resolved to ulp(v), a position to that over the field's slope
+    let slope = domain.longest_side();
+    for (i, site) in sites.iter().enumerate() {
+        let too_coarse = |field: &str, what: &str, x: f64, resolved: f64| {
+            Error::site(
+                i,
+                field,
+                format!(
+                    "{what} {x:e} is too large for epsilon {epsilon:e}: f64 resolves it only to {resolved:.3e}; move the site nearer the domain, or raise epsilon"
+                ),
+            )
+        };
+        let check = |field: &str, x: f64| {
+            if ulp(x) > limit {
+                Err(too_coarse(field, "coordinate or length", x, ulp(x)))
+            } else {
+                Ok(())
+            }
+        };
+        let point = |field: &str, p: &Point| check(field, p.x).and_then(|_| check(field, p.y));
+        let points = |field: &str, ps: &[Point]| ps.iter().try_for_each(|p| point(field, p));
+        match &site.kind {
+            SiteKind::Point { at, metric } => {
+                point("at", at)?;
+                let weight = match metric {
+                    Metric::Power { weight } => weight * weight,
+                    Metric::Anisotropic { weight, .. } | Metric::Moebius { weight, .. } => *weight,
+                    Metric::Euclidean | Metric::Lp { .. } => 0.0,
+                };
+                if ulp(weight) > limit * slope {
+                    return Err(too_coarse(
+                        "metric.weight",
+                        "the weight's contribution to the field",
+                        weight,
+                        ulp(weight) / slope,
+                    ));
+                }
+            }
+            SiteKind::Circle { center, radius } => {
+                point("center", center)?;
+                check("radius", *radius)?;
+            }
+            SiteKind::Ellipse {
+                center, semi_axes, ..
+            } => {
+                point("center", center)?;
+                check("semi_axes", semi_axes[0])?;
+                check("semi_axes", semi_axes[1])?;
+            }
+            SiteKind::Segment { from, to } => {
+                point("from", from)?;
+                point("to", to)?;
+            }
+            SiteKind::Arc {
+                center,
+                radius,
+                start_angle,
+                end_angle,
+            } => {
+                point("center", center)?;
+                check("radius", *radius)?;
+                for (field, angle) in [("start_angle", start_angle), ("end_angle", end_angle)] {
+                    if ulp(*angle) * radius > limit {
+                        return Err(too_coarse(field, "angle", *angle, ulp(*angle) * radius));
+                    }
+                }
+            }
+            SiteKind::Polyline { points: ps } => points("points", ps)?,
+            SiteKind::Polygon { rings } => rings.iter().try_for_each(|r| points("rings", r))?,
+            SiteKind::Bezier { control_points, .. } | SiteKind::Bspline { control_points, .. } => {
+                points("control_points", control_points)?
+            }
+            SiteKind::Algebraic { .. }
+            | SiteKind::Field { .. }
+            | SiteKind::ImplicitField { .. } => {}
+        }
+    }
+    Ok(())
+}
+
+/// A disk or a filled ellipse: `center + R(rotation)·(a cos t, b sin t)` bounds it.
+#[derive(Clone, Copy)]
+struct Oval {
+    center: Point,
+    axes: [f64; 2],
+    rotation: f64,
+}
+
+impl Oval {
+    fn of(kind: &SiteKind) -> Option<Oval> {
+        match kind {
+            SiteKind::Circle { center, radius } if *radius > 0.0 => Some(Oval {
+                center: *center,
+                axes: [*radius, *radius],
+                rotation: 0.0,
+            }),
+            SiteKind::Ellipse {
+                center,
+                semi_axes,
+                rotation,
+            } => Some(Oval {
+                center: *center,
+                axes: *semi_axes,
+                rotation: *rotation,
+            }),
+            _ => None,
+        }
+    }
+
+    fn boundary(&self, t: f64) -> Point {
+        let (s, c) = self.rotation.sin_cos();
+        let (u, v) = (self.axes[0] * t.cos(), self.axes[1] * t.sin());
+        self.center + Point::new(c * u - s * v, s * u + c * v)
+    }
+
+    /// `(u/a)² + (v/b)² − 1` in the oval's frame: negative strictly inside.
+    fn level(&self, q: Point) -> f64 {
+        let (s, c) = self.rotation.sin_cos();
+        let d = q - self.center;
+        let (u, v) = (c * d.x + s * d.y, -s * d.x + c * d.y);
+        (u / self.axes[0]).powi(2) + (v / self.axes[1]).powi(2) - 1.0
+    }
+
+    fn reach(&self) -> f64 {
+        self.axes[0].max(self.axes[1])
+    }
+
+    /// Whether a point of `self`'s boundary lies strictly inside `other`: 1024 samples
+    /// of the parameter, each local minimum of `other.level` refined by golden-section
+    /// search (the level is a trigonometric polynomial of degree 2 in `t`: at most two
+    /// minima, each found unless narrower than the sampling, which the caller covers by
+    /// testing both ways).
+    fn enters(&self, other: &Oval) -> bool {
+        const N: usize = 1024;
+        let tau = std::f64::consts::TAU;
+        let g = |t: f64| other.level(self.boundary(t));
+        let vals: Vec<f64> = (0..N).map(|k| g(tau * k as f64 / N as f64)).collect();
+        (0..N).any(|k| {
+            let (prev, here, next) = (vals[(k + N - 1) % N], vals[k], vals[(k + 1) % N]);
+            if here < 0.0 {
+                return true;
+            }
+            if here > prev || here > next {
+                return false;
+            }
+            let (mut lo, mut hi) = (
+                tau * (k as f64 - 1.0) / N as f64,
+                tau * (k as f64 + 1.0) / N as f64,
+            );
+            let r = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..60 {
+                let (m1, m2) = (hi - r * (hi - lo), lo + r * (hi - lo));
+                if g(m1) < 0.0 || g(m2) < 0.0 {
+                    return true;
+                }
+                if g(m1) < g(m2) {
+                    hi = m2;
+                } else {
+                    lo = m1;
+                }
+            }
+            false
+        })
+    }
+
+    /// Whether the two interiors meet: a boundary point of one strictly inside the
+    /// other, or one's centre inside the other (containment). Touching is allowed.
+    fn overlaps(&self, other: &Oval) -> bool {
+        if self.center.dist(other.center) >= self.reach() + other.reach() {
+            return false;
+        }
+        if self.axes[0] == self.axes[1] && other.axes[0] == other.axes[1] {
+            return self.center.dist(other.center) < self.axes[0] + other.axes[0];
+        }
+        other.level(self.center) < 0.0
+            || self.level(other.center) < 0.0
+            || self.enters(other)
+            || other.enters(self)
+    }
+}
+
+/// Refuses circles and ellipses whose interiors meet (the format's sites are disjoint:
+/// inside two sites at once both fields are negative and the diagram is not defined
+/// there). Pairs are swept in order of their leftmost reach.
+pub(crate) fn overlapping_ovals(sites: &[Site]) -> Result<(), Error> {
+    let mut ovals: Vec<(usize, Oval)> = sites
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| Oval::of(&s.kind).map(|o| (i, o)))
+        .collect();
+    ovals.sort_by(|a, b| (a.1.center.x - a.1.reach()).total_cmp(&(b.1.center.x - b.1.reach())));
+    for (k, (i, a)) in ovals.iter().enumerate() {
+        for (j, b) in &ovals[k + 1..] {
+            if b.center.x - b.reach() > a.center.x + a.reach() {
+                break;
+            }
+            if a.overlaps(b) {
+                let (site, other) = ((*i).max(*j), (*i).min(*j));
+                return Err(Error::Conflict {
+                    site,
+                    other,
+                    message: "their interiors overlap (the sites of a scene must be disjoint)"
+                        .into(),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

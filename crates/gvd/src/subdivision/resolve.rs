@@ -5,6 +5,7 @@
 //! where all its ports meet at one vertex of the labels present (a near-degenerate vertex
 //! of higher degree, reported as uncertified).
 
+use super::budget::Budget;
 use super::filter::{self, Certificate};
 use super::segments::{label, transitions};
 use super::trace;
@@ -73,15 +74,18 @@ pub struct Tolerances {
 pub struct Resolver<'a, F> {
     pub fields: &'a [F],
     pub tol: Tolerances,
+    /// Local splits take boxes from it, traced polylines take points.
+    pub budget: &'a Budget,
     pub leaf: u32,
     next_inner: u32,
 }
 
 impl<'a, F: DistanceField> Resolver<'a, F> {
-    pub fn new(fields: &'a [F], tol: Tolerances, leaf: u32) -> Self {
+    pub fn new(fields: &'a [F], tol: Tolerances, budget: &'a Budget, leaf: u32) -> Self {
         Resolver {
             fields,
             tol,
+            budget,
             leaf,
             next_inner: 0,
         }
@@ -99,6 +103,9 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
     /// Resolves the box `b` with candidate sites `sites` (sorted) and boundary `ports`.
     pub fn resolve(&mut self, b: Aabb, sites: &[u32], ports: Vec<Port>, out: &mut LeafOutput) {
         if sites.len() <= 1 || (ports.is_empty() && self.no_island(b, sites)) {
+            return;
+        }
+        if !self.budget.take_box() {
             return;
         }
         if b.longest_side() <= self.tol.min_box {
@@ -167,6 +174,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                     over_y,
                     b,
                     self.tol.trace,
+                    self.budget,
                 );
                 out.pieces.push(Piece {
                     pair,
@@ -213,8 +221,17 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                         over_y,
                         b,
                         self.tol.trace,
+                        self.budget,
                     ),
-                    None => trace::trace(self.fields, pair[0], pair[1], p.at, v, self.tol.trace),
+                    None => trace::trace(
+                        self.fields,
+                        pair[0],
+                        pair[1],
+                        p.at,
+                        v,
+                        self.tol.trace,
+                        self.budget,
+                    ),
                 };
                 out.pieces.push(Piece {
                     pair,

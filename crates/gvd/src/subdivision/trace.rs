@@ -1,5 +1,6 @@
 //! Bisector tracing inside a box, and the Voronoi vertex solver.
 
+use super::budget::Budget;
 use crate::geom::{segment_distance, Aabb, Point};
 use crate::site::DistanceField;
 
@@ -50,7 +51,9 @@ pub fn project<F: DistanceField>(
 
 /// A polyline from `p` to `q` (both on the bisector of `a` and `b`) whose points lie on
 /// the bisector and whose chords stay within `tol` of it: chords are halved until their
-/// midpoint and quarter points project onto the curve within `tol`.
+/// midpoint and quarter points project onto the curve within `tol`. Each point takes one
+/// from `budget`; once it is out, the chords left are kept as they are.
+#[allow(clippy::too_many_arguments)]
 pub fn trace<F: DistanceField>(
     fields: &[F],
     a: u32,
@@ -58,9 +61,10 @@ pub fn trace<F: DistanceField>(
     p: Point,
     q: Point,
     tol: f64,
+    budget: &Budget,
 ) -> Vec<Point> {
     let mut out = vec![p];
-    chord(fields, a, b, p, q, tol, 0, &mut out);
+    chord(fields, a, b, p, q, (tol, budget), 0, &mut out);
     out
 }
 
@@ -71,13 +75,13 @@ fn chord<F: DistanceField>(
     b: u32,
     p: Point,
     q: Point,
-    tol: f64,
+    (tol, budget): (f64, &Budget),
     depth: u32,
     out: &mut Vec<Point>,
 ) {
     let d = q - p;
     let len = d.norm();
-    if len <= tol || depth >= 24 {
+    if len <= tol || depth >= 24 || !budget.take_point() {
         out.push(q);
         return;
     }
@@ -95,8 +99,8 @@ fn chord<F: DistanceField>(
         out.push(q);
         return;
     }
-    chord(fields, a, b, p, m, tol, depth + 1, out);
-    chord(fields, a, b, m, q, tol, depth + 1, out);
+    chord(fields, a, b, p, m, (tol, budget), depth + 1, out);
+    chord(fields, a, b, m, q, (tol, budget), depth + 1, out);
 }
 
 /// The point of `bx` where `f_a = f_b = f_c`, by Newton's method from the box centre;
@@ -135,7 +139,8 @@ pub fn vertex<F: DistanceField>(fields: &[F], s: [u32; 3], bx: &Aabb) -> Option<
 /// A polyline from `p` to `q` along a bisector that is a graph over one axis in `bx`
 /// (`over_y`: `x = g(y)`; else `y = g(x)`), certified by a gradient component that never
 /// vanishes. Each point is the unique root of `f_a − f_b` on the box's cross-section,
-/// found by bisection; the parameter interval is halved until chords stay within `tol`.
+/// found by bisection; the parameter interval is halved until chords stay within `tol`
+/// (or `budget` runs out of points).
 #[allow(clippy::too_many_arguments)]
 pub fn trace_graph<F: DistanceField>(
     fields: &[F],
@@ -146,9 +151,10 @@ pub fn trace_graph<F: DistanceField>(
     over_y: bool,
     bx: &Aabb,
     tol: f64,
+    budget: &Budget,
 ) -> Vec<Point> {
     let mut out = vec![p];
-    graph_chord(fields, (a, b), p, q, over_y, bx, tol, 0, &mut out);
+    graph_chord(fields, (a, b), p, q, over_y, bx, (tol, budget), 0, &mut out);
     out
 }
 
@@ -160,12 +166,12 @@ fn graph_chord<F: DistanceField>(
     q: Point,
     over_y: bool,
     bx: &Aabb,
-    tol: f64,
+    (tol, budget): (f64, &Budget),
     depth: u32,
     out: &mut Vec<Point>,
 ) {
     let param = |r: Point| if over_y { r.y } else { r.x };
-    if p.dist(q) <= tol || depth >= 30 {
+    if p.dist(q) <= tol || depth >= 30 || !budget.take_point() {
         out.push(q);
         return;
     }
@@ -184,8 +190,8 @@ fn graph_chord<F: DistanceField>(
         out.push(q);
         return;
     }
-    graph_chord(fields, ab, p, m, over_y, bx, tol, depth + 1, out);
-    graph_chord(fields, ab, m, q, over_y, bx, tol, depth + 1, out);
+    graph_chord(fields, ab, p, m, over_y, bx, (tol, budget), depth + 1, out);
+    graph_chord(fields, ab, m, q, over_y, bx, (tol, budget), depth + 1, out);
 }
 
 /// The root of `f_a − f_b` on the line `y = t` (`over_y`) or `x = t` across the box.

@@ -6,6 +6,7 @@
 //! the domain is a grid of `n[0] × n[1]` root cells (of side at most the maximum box
 //! size, when one is asked for), each cell subdivided dyadically below that.
 
+use super::budget::Budget;
 use super::filter::{self, Certificate};
 use crate::geom::{Aabb, Axis, Point};
 use crate::site::DistanceField;
@@ -39,6 +40,11 @@ impl Lattice {
             cell: [w / cells[0] as f64, h / cells[1] as f64],
             cells,
         }
+    }
+
+    /// The longest side of the smallest box the lattice can hold.
+    pub fn smallest_box(&self) -> f64 {
+        self.cell[0].max(self.cell[1]) / (1u64 << CELL_BITS) as f64
     }
 
     fn coord(&self, axis: usize, v: u64) -> f64 {
@@ -114,14 +120,17 @@ pub struct Leaf {
 }
 
 /// Parameters of the subdivision phase.
-#[derive(Clone, Copy, Debug)]
-pub struct Params {
+#[derive(Clone, Copy)]
+pub struct Params<'a> {
     /// Boxes holding two or more sites are split until their longest side is at most this.
     pub max_box: Option<f64>,
     /// The resolution cut-off: boxes this small are not split.
     pub min_box: f64,
     /// Process independent subtrees on rayon's thread pool (same result either way).
     pub parallel: bool,
+    /// Each box visited takes one; once it is out no box is split again (the leaves are
+    /// then incomplete, and the caller reports the exhausted budget, not a diagram).
+    pub budget: &'a Budget,
 }
 
 /// Runs Alg. 1 and returns the leaves in a deterministic order (depth-first, lower child
@@ -148,6 +157,9 @@ fn recurse<F: DistanceField>(
     sites: Vec<(u32, F::State)>,
     out: &mut Vec<Leaf>,
 ) {
+    if !params.budget.take_box() {
+        return;
+    }
     let sites = filter::lower_envelope(fields, &aabb, sites);
     let size = aabb.longest_side();
     let leaf = |sites: &[(u32, F::State)], certificate: Certificate, uncertified: bool| Leaf {

@@ -120,6 +120,14 @@ impl Report {
 /// How many offenders each check lists.
 const MAX_LIST: usize = 5;
 
+/// The largest completeness grid ([`VerifyOptions::grid`]): its labels and crossings take
+/// some 16 bytes a node, 270 MB here.
+pub const MAX_GRID: usize = 4096;
+
+/// Most edge samples the soundness check takes (some 24 bytes each): edges longer than
+/// this many times ε/2 are sampled more coarsely, with a warning.
+const MAX_SAMPLES: usize = 1 << 22;
+
 /// Checks `diagram` against `scene`. Refuses scenes the checker cannot evaluate: site
 /// kinds without a distance field here yet (Béziers, B-splines, algebraic curves), and
 /// ellipses in `medial_axis` mode.
@@ -128,16 +136,30 @@ pub fn verify(
     diagram: &VoronoiComplex,
     opts: &VerifyOptions,
 ) -> Result<Report, Error> {
-    // Euclidean scenes beyond 2^±200 are checked at a power-of-two scale near 1 (exact),
-    // where squared distances neither overflow nor underflow.
-    if scene.scales_exactly() {
-        if let Some(s) = scene.unit_scale() {
-            let mut scaled = diagram.clone();
-            scaled.scale(s);
-            let mut report = check(&scene.scaled(s), &scaled, opts, 1.0 / s)?;
-            report.worst_edge_error /= s;
-            return Ok(report);
-        }
+    if !(2..=MAX_GRID).contains(&opts.grid) {
+        return Err(Error::InvalidOption {
+            option: "grid".into(),
+            message: format!(
+                "the completeness grid must have 2 to {MAX_GRID} nodes a side, found {}",
+                opts.grid
+            ),
+        });
+    }
+    if !(opts.slack.is_finite() && opts.slack > 0.0) {
+        return Err(Error::InvalidOption {
+            option: "slack".into(),
+            message: format!("must be a finite number > 0, found {}", opts.slack),
+        });
+    }
+    // Scenes whose fields share a degree and would overflow or underflow (beyond 2^±200
+    // for distances) are checked at a power-of-two scale near 1 (exact, the same
+    // diagram), as the engines compute them.
+    if let Some(s) = scene.unit_scale() {
+        let mut scaled = diagram.clone();
+        scaled.scale(s);
+        let mut report = check(&scene.scaled(s), &scaled, opts, 1.0 / s)?;
+        report.worst_edge_error /= s;
+        return Ok(report);
     }
     check(scene, diagram, opts, 1.0)
 }
@@ -406,7 +428,8 @@ impl<'a> Checker<'a> {
 
     fn run(mut self) -> Report {
         let mut problems = Vec::new();
-        let (sound, worst_edge_error, sound_ok) = self.soundness(&mut problems);
+        let spacing = self.sample_spacing();
+        let (sound, worst_edge_error, sound_ok) = self.soundness(spacing, &mut problems);
         let (vok, vertices_ok) = self.vertices(&mut problems);
         let complete = self.completeness(&mut problems);
         self.structure();
@@ -599,9 +622,32 @@ impl<'a> Checker<'a> {
         (e, why)
     }
 
+    /// The spacing of check a's samples: ε/2, or the coarser spacing that keeps them
+    /// within [`MAX_SAMPLES`] (with a warning saying so).
+    fn sample_spacing(&mut self) -> f64 {
+        let fine = self.scene.epsilon() / 2.0;
+        let (mut length, mut chords) = (0.0, 0usize);
+        for ge in &self.edges {
+            let pts = &self.diagram.edges[ge.index].points;
+            length += pts.windows(2).map(|w| w[1].dist(w[0])).sum::<f64>();
+            chords += pts.len();
+        }
+        let room = MAX_SAMPLES.saturating_sub(chords).max(MAX_SAMPLES / 2) as f64;
+        if !length.is_finite() || length / fine <= room {
+            return fine;
+        }
+        let spacing = length / room;
+        self.warnings.push(format!(
+            "soundness: the edges are sampled every {} ({} eps), not every eps/2: at eps/2 they would take {} samples",
+            fmt_g3(spacing * self.unit),
+            fmt_g3(spacing / self.scene.epsilon()),
+            fmt_g3(length / fine)
+        ));
+        spacing
+    }
+
     /// Check a: returns (fraction good, worst error, pass).
-    fn soundness(&self, problems: &mut Vec<String>) -> (f64, f64, bool) {
-        let spacing = self.scene.epsilon() / 2.0;
+    fn soundness(&self, spacing: f64, problems: &mut Vec<String>) -> (f64, f64, bool) {
         let mut samples: Vec<(Point, usize)> = Vec::new();
         for (g, ge) in self.edges.iter().enumerate() {
             let pts = &self.diagram.edges[ge.index].points;
@@ -856,7 +902,7 @@ impl<'a> Checker<'a> {
     /// Check c: returns the fraction of covered crossings.
     fn completeness(&self, problems: &mut Vec<String>) -> f64 {
         let dom = self.scene.domain();
-        let n = self.opts.grid.max(2);
+        let n = self.opts.grid;
         let (hx, hy) = (dom.width() / n as f64, dom.height() / n as f64);
         let r = 2.0 * self.tol + hx.max(hy);
         let node = |i: usize, j: usize| {

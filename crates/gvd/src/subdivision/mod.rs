@@ -223,7 +223,7 @@ fn site_extent(kind: &crate::scene::SiteKind) -> f64 {
 /// [`Error::Budget`] when it needs more boxes or points than `params.limits` allow.
 ///
 /// The resolution is `params.epsilon`, floored where f64 or the box lattice cannot
-/// resolve it (see [`resolution`]); `stats.resolution` gives the one used.
+/// resolve it (see `resolution`); `stats.resolution` gives the one used.
 pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Result<Output, Error> {
     let start = Instant::now();
     let lattice = tree::Lattice::new(&params.domain, params.max_box);

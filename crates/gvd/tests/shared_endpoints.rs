@@ -129,3 +129,9 @@ fn nearly_straight_joint_in_a_road_network() {
     let s = regression_scene("shared-endpoint-84segments");
     assert_exact_vertices_and_sound(&s, "84 segments");
 }
+/// Three segments of a coastline (CGAL's `norway.cin`), two of them sharing an end.
+#[test]
+fn coastline_joint() {
+    let s = regression_scene("shared-endpoint-labels-3segments");
+    assert_exact_vertices_and_sound(&s, "3 segments");
+}

@@ -4,6 +4,10 @@
 //! here from the scene's sites, no engine code); every edge sample likewise within
 //! epsilon; and `gvd::verify` passes the diagram.
 //!
+//! Generated road networks (jittered grids of segments with degree-4 junctions, some
+//! of them exactly or nearly straight, as separate segments and as polylines) get the
+//! same checks, by proptest with a fixed seed.
+//!
 //! The regression scenes are cut from real inputs (Boost.Polygon's example and
 //! benchmark inputs, CGAL's `norway.cin`) where the engine once wrote a vertex at a
 //! shared end that listed a generator far away: at a (nearly) straight joint the
@@ -14,6 +18,8 @@ use gvd::complex::{Generator, VoronoiComplex};
 use gvd::geom::Point;
 use gvd::verify::{verify, VerifyOptions};
 use gvd::{compute, Engine, Options, Scene};
+use proptest::prelude::*;
+use serde_json::{json, Value};
 
 mod common;
 use common::{dist, generators};
@@ -87,23 +93,45 @@ fn worst_edge(s: &Scene, d: &VoronoiComplex) -> (f64, String) {
 }
 
 /// Vertices within `1e-6·epsilon` (they are computed, not sampled), edges within
-/// epsilon, and `gvd::verify` passes.
+/// epsilon, and `gvd::verify` passes (on a `grid × grid` grid).
+fn exact_vertices_and_sound(s: &Scene, grid: usize) -> Result<(), String> {
+    let options = Options {
+        engine: Engine::Incremental,
+        ..Options::default()
+    };
+    let d = compute(s, &options).map_err(|e| format!("refused: {e}"))?;
+    d.check_invariants()?;
+    if d.edges.is_empty() {
+        return Err("no edges".into());
+    }
+    let (err, at) = worst_vertex(s, &d);
+    if err > 1e-6 {
+        return Err(format!("{err} epsilon: {at}"));
+    }
+    let (err, at) = worst_edge(s, &d);
+    if err > 1.0 {
+        return Err(format!("{err} epsilon: {at}"));
+    }
+    let opts = VerifyOptions {
+        grid,
+        ..VerifyOptions::default()
+    };
+    let report = verify(s, &d, &opts).map_err(|e| e.to_string())?;
+    if !report.passed {
+        return Err(format!(
+            "gvd verify: {} {:?}",
+            report.summary_line(),
+            report.problems
+        ));
+    }
+    Ok(())
+}
+
 #[track_caller]
 fn assert_exact_vertices_and_sound(s: &Scene, what: &str) {
-    let d = incremental(s);
-    d.check_invariants().unwrap();
-    assert!(!d.edges.is_empty(), "{what}: no edges");
-    let (err, at) = worst_vertex(s, &d);
-    assert!(err <= 1e-6, "{what}: {err} epsilon: {at}");
-    let (err, at) = worst_edge(s, &d);
-    assert!(err <= 1.0, "{what}: {err} epsilon: {at}");
-    let report = verify(s, &d, &VerifyOptions::default()).unwrap();
-    assert!(
-        report.passed,
-        "{what}: gvd verify: {} {:?}",
-        report.summary_line(),
-        report.problems
-    );
+    if let Err(e) = exact_vertices_and_sound(s, 512) {
+        panic!("{what}: {e}");
+    }
 }
 
 /// Two long parallel segments and a straight chain of two segments between them (4 of
@@ -134,4 +162,97 @@ fn nearly_straight_joint_in_a_road_network() {
 fn coastline_joint() {
     let s = regression_scene("shared-endpoint-labels-3segments");
     assert_exact_vertices_and_sound(&s, "3 segments");
+}
+
+/// A road network: an `n × n` grid of junctions with spacing 1, each moved by its own
+/// jitter (`jitter[k]` picks none, 1e-10, 1e-6 or up to 0.15 of the spacing, in a
+/// direction of its own), and the grid's edges between neighbours that `keep` keeps
+/// (every junction keeps at least its edge to the right or up, so the network is
+/// dense). Jitters below a quarter of the spacing keep the grid crossing-free. As
+/// separate segments (junctions of degree up to four shared by four sites) or, with
+/// `polylines`, each row and column as one polyline broken where an edge is dropped.
+fn road_network(n: usize, jitter: &[(u8, f64)], keep: &[bool], polylines: bool) -> Scene {
+    let at = |i: usize, j: usize| {
+        let k = j * n + i;
+        let (kind, angle) = jitter[k % jitter.len()];
+        let r = match kind {
+            0 => 0.0,
+            1 => 1e-10,
+            2 => 1e-6,
+            _ => 0.15 * (angle / std::f64::consts::TAU),
+        };
+        [i as f64 + r * angle.cos(), j as f64 + r * angle.sin()]
+    };
+    let mut sites: Vec<Value> = Vec::new();
+    let mut edge = 0;
+    for horizontal in [true, false] {
+        for line in 0..n {
+            let mut run: Vec<[f64; 2]> = Vec::new();
+            let flush = |run: &mut Vec<[f64; 2]>, sites: &mut Vec<Value>| {
+                if run.len() >= 2 {
+                    sites.push(json!({"kind": "polyline", "points": run}));
+                }
+                run.clear();
+            };
+            for step in 0..n - 1 {
+                let (a, b) = if horizontal {
+                    (at(step, line), at(step + 1, line))
+                } else {
+                    (at(line, step), at(line, step + 1))
+                };
+                let kept = keep[edge % keep.len()] || (step + line) % 3 == 0;
+                edge += 1;
+                if !kept {
+                    flush(&mut run, &mut sites);
+                } else if polylines {
+                    if run.is_empty() {
+                        run.push(a);
+                    }
+                    run.push(b);
+                } else {
+                    sites.push(json!({"kind": "segment", "from": a, "to": b}));
+                }
+            }
+            flush(&mut run, &mut sites);
+        }
+    }
+    let hi = n as f64;
+    Scene::from_value(&json!({
+        "domain": [-1.0, -1.0, hi, hi],
+        "epsilon": 0.004 * (hi + 1.0),
+        "mode": "voronoi",
+        "sites": sites,
+    }))
+    .unwrap()
+}
+
+/// A fixed seed (set `SHARED_ENDPOINTS_SEED` to explore others), no persistence file.
+fn config(cases: u32) -> ProptestConfig {
+    let seed = std::env::var("SHARED_ENDPOINTS_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20_260_214);
+    ProptestConfig {
+        cases,
+        max_shrink_iters: 100,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
+}
+
+proptest! {
+    #![proptest_config(config(24))]
+
+    #[test]
+    fn road_networks(
+        n in 3usize..8,
+        jitter in prop::collection::vec((0u8..4, 0.0f64..std::f64::consts::TAU), 1..40),
+        keep in prop::collection::vec(prop::bool::weighted(0.85), 1..40),
+        polylines in any::<bool>(),
+    ) {
+        let s = road_network(n, &jitter, &keep, polylines);
+        let r = exact_vertices_and_sound(&s, 256);
+        prop_assert!(r.is_ok(), "{}", r.unwrap_err());
+    }
 }

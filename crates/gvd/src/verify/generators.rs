@@ -77,7 +77,86 @@ pub(super) struct Gens {
     pub masks: Vec<Mask>,
     /// the medial-axis region (`medial_axis` mode only)
     pub region: Option<Region>,
+    /// the points that several sites contain, with their owners
+    pub shared: SharedPoints,
     lookup: HashMap<(usize, u8, usize), usize>,
+}
+
+/// The points that several sites contain (segments sharing an end, a point site at a
+/// segment's end), each with the generator that names it for each of those sites: its
+/// corner there in `complex` and `medial_axis` modes, the site itself in `voronoi`
+/// mode. `SCENE_FORMAT.md` ("Shared points") leaves open which of them owns the region
+/// of points nearest to the shared point, so a diagram may name any. Points within
+/// `radius` of each other are one point (an arc's computed end may miss a segment's by
+/// an ulp).
+pub(super) struct SharedPoints {
+    radius: f64,
+    /// owners bucketed by cells of size `radius`
+    cells: HashMap<(i64, i64), Vec<Owner>>,
+}
+
+/// A site's point, the generator naming it, and the site.
+type Owner = (Point, usize, usize);
+
+impl SharedPoints {
+    fn cell(&self, p: Point) -> (i64, i64) {
+        let f = |v: f64| (v / self.radius).floor() as i64;
+        (f(p.x), f(p.y))
+    }
+
+    /// The owners `(generator, site)` within `radius` of `p`.
+    fn near(&self, p: Point) -> impl Iterator<Item = (usize, usize)> + '_ {
+        let (i, j) = self.cell(p);
+        (i - 1..=i + 1)
+            .flat_map(move |a| (j - 1..=j + 1).map(move |b| (a, b)))
+            .filter_map(|c| self.cells.get(&c))
+            .flatten()
+            .filter(move |e| e.0.dist(p) <= self.radius)
+            .map(|e| (e.1, e.2))
+    }
+
+    /// The owners of the shared point at `p` (none if no shared point is there).
+    pub(super) fn owners_at(&self, p: Point) -> Vec<(usize, usize)> {
+        let owners: Vec<(usize, usize)> = self.near(p).collect();
+        let first = owners.first().map(|o| o.1);
+        if owners.iter().all(|o| Some(o.1) == first) {
+            return Vec::new();
+        }
+        owners
+    }
+
+    /// Within what the shared points are matched.
+    pub(super) fn radius(&self) -> f64 {
+        self.radius
+    }
+}
+
+/// The points of a site that another site may share: a Euclidean point site's point,
+/// the corners of segments, polylines and polygons (in their numbering), an arc's ends.
+fn site_points(kind: &SiteKind) -> Vec<Point> {
+    match kind {
+        SiteKind::Point {
+            at,
+            metric: crate::scene::Metric::Euclidean,
+        } => vec![*at],
+        SiteKind::Segment { from, to } => vec![*from, *to],
+        SiteKind::Polyline { points } => points.clone(),
+        SiteKind::Polygon { rings } => rings.iter().flatten().copied().collect(),
+        &SiteKind::Arc {
+            center,
+            radius,
+            start_angle,
+            end_angle,
+        } => {
+            let sweep = crate::geom::arc::sweep(start_angle, end_angle);
+            if sweep >= TAU {
+                return Vec::new();
+            }
+            let at = |a: f64| center + Point::new(a.cos(), a.sin()) * radius;
+            vec![at(start_angle), at(start_angle + sweep)]
+        }
+        _ => Vec::new(),
+    }
 }
 
 impl Gens {
@@ -94,6 +173,10 @@ impl Gens {
             featured,
             masks: Vec::new(),
             region: None,
+            shared: SharedPoints {
+                radius: 1e-9 * scene.domain().longest_side(),
+                cells: HashMap::new(),
+            },
             lookup: HashMap::new(),
         };
         for (i, site) in scene.sites().iter().enumerate() {
@@ -159,7 +242,39 @@ impl Gens {
             let r = medial_region(scene);
             g.region = (!r.is_empty()).then_some(r);
         }
+        g.find_shared_points(scene);
         Ok(g)
+    }
+
+    /// Fills [`Gens::shared`] with the points of more than one site.
+    fn find_shared_points(&mut self, scene: &Scene) {
+        let mut all = SharedPoints {
+            radius: self.shared.radius,
+            cells: HashMap::new(),
+        };
+        for (i, site) in scene.sites().iter().enumerate() {
+            let whole = self.lookup.get(&(i, 0, 0)).copied();
+            for (k, p) in site_points(&site.kind).into_iter().enumerate() {
+                let corner = self
+                    .lookup
+                    .get(&(i, kind_key(Some(FeatureKind::Corner)), k));
+                if let Some(g) = whole.or(corner.copied()) {
+                    let cell = all.cell(p);
+                    all.cells.entry(cell).or_default().push((p, g, i));
+                }
+            }
+        }
+        let shared: Vec<Owner> = all
+            .cells
+            .values()
+            .flatten()
+            .filter(|e| all.near(e.0).any(|(_, site)| site != e.2))
+            .copied()
+            .collect();
+        for e in shared {
+            let cell = self.shared.cell(e.0);
+            self.shared.cells.entry(cell).or_default().push(e);
+        }
     }
 
     /// Adds a generator: `feature` is `None` for a whole site, else `(kind, index)` with

@@ -16,7 +16,9 @@
 //! * **c. completeness** — the centres of an N × N grid are labelled with their nearest
 //!   site; every crossing between differently labelled neighbours (bisection, split where
 //!   a third site is nearer) needs an output edge with the same unordered pair within
-//!   `R = 2·tol + h`, or a vertex within `R` listing both.
+//!   `R = 2·tol + h`, or a vertex within `R` listing both. Where a label's foot is a
+//!   point that several sites contain (a shared segment end), any of them may name it
+//!   (`SCENE_FORMAT.md`, "Shared points"): its corner there in the featured modes.
 //! * **d. structure** — valid labels and `from`/`to` references, edge ends within tol of
 //!   the vertex they name, which lists the edge's generators; null ends on the domain
 //!   boundary unless the edge is a closed loop.
@@ -831,7 +833,8 @@ impl<'a> Checker<'a> {
     }
 
     /// The crossings of the bisectors between the nearest generators `a` at `qa` and
-    /// `b` at `qb`: bisection of `d_a − d_b` (14 steps); where a third generator is
+    /// `b` at `qb`: bisection of `d_a − d_b` (14 steps, then linear interpolation);
+    /// where a third generator is
     /// nearer at the crossing, both halves are searched again (depth ≤ 4). An edge or
     /// piece whose foot at the crossing is its end corner, beyond it by more than the
     /// last bracket, becomes that corner (the bisection crossed the corner's zone
@@ -847,16 +850,27 @@ impl<'a> Checker<'a> {
         out: &mut Vec<(Point, usize, usize)>,
     ) {
         let (mut lo, mut hi) = (0.0, 1.0);
+        let (mut d_lo, mut d_hi) = (f64::NAN, f64::NAN);
         for _ in 0..14 {
             let mid = 0.5 * (lo + hi);
             let q = qa.lerp(qb, mid);
-            if self.fields[a].value(q) <= self.fields[b].value(q) {
-                lo = mid;
+            let (va, vb) = (self.fields[a].value(q), self.fields[b].value(q));
+            if va <= vb {
+                (lo, d_lo) = (mid, va - vb);
             } else {
-                hi = mid;
+                (hi, d_hi) = (mid, va - vb);
             }
         }
-        let x = qa.lerp(qb, 0.5 * (lo + hi));
+        // The tie inside the last bracket by linear interpolation of d_a − d_b (as the
+        // Python checker does): the bracket's middle can be half a bracket off, enough
+        // to separate the feet at a tie through one point (a shared end's wedge).
+        let frac = d_lo / (d_lo - d_hi);
+        let t = if frac.is_finite() {
+            lo + frac.clamp(0.0, 1.0) * (hi - lo)
+        } else {
+            0.5 * (lo + hi)
+        };
+        let x = qa.lerp(qb, t);
         let (da, ga) = self.eval(a, x);
         let (db, gb) = self.eval(b, x);
         // The crossing is known within the last bracket: only beyond a corner by more
@@ -897,6 +911,29 @@ impl<'a> Checker<'a> {
         if !tie && self.in_region(x) {
             out.push((x, a, b));
         }
+    }
+
+    /// `g` and the generators that may name its region at `x` instead: where `g`'s foot
+    /// from `x` is a point that other sites share (see [`generators::SharedPoints`]),
+    /// their generators there that tie with `g` at `x`.
+    fn owners(&self, g: usize, x: Point) -> Vec<usize> {
+        let mut out = vec![g];
+        let Some(foot) = self.fields[g].foot(x) else {
+            return out;
+        };
+        let shared = &self.gens.shared;
+        let owners = shared.owners_at(foot);
+        if owners.is_empty() {
+            return out;
+        }
+        let (site, dg) = (self.gens.labels[g].site(), self.fields[g].value(x));
+        for (h, other) in owners {
+            let tie = (self.fields[h].value(x) - dg).abs() <= 2.0 * shared.radius();
+            if other != site && tie && !out.contains(&h) {
+                out.push(h);
+            }
+        }
+        out
     }
 
     /// Check c: returns the fraction of covered crossings.
@@ -957,8 +994,7 @@ impl<'a> Checker<'a> {
         let pb = Buckets::new(&mids, dom, r);
         let vat: Vec<Point> = self.diagram.vertices.iter().map(|v| v.at).collect();
         let vb = Buckets::new(&vat, dom, r);
-        let covered = map_range(crossings.len(), 1, |c| {
-            let (x, a, b) = crossings[c];
+        let covered_by = |x: Point, a: usize, b: usize| {
             let key = (a.min(b), a.max(b));
             // a piece's midpoint lies within R + R/2 of x: at most 2 cells away
             pb.around(x, 2).any(|p| {
@@ -970,6 +1006,18 @@ impl<'a> Checker<'a> {
                         .as_ref()
                         .is_some_and(|g| g.contains(&a) && g.contains(&b))
             })
+        };
+        let covered = map_range(crossings.len(), 1, |c| {
+            let (x, a, b) = crossings[c];
+            covered_by(x, a, b) || {
+                // either label may be another owner of a shared point
+                let (oa, ob) = (self.owners(a, x), self.owners(b, x));
+                (oa.len() > 1 || ob.len() > 1)
+                    && oa.iter().any(|&a2| {
+                        ob.iter()
+                            .any(|&b2| a2 != b2 && (a2, b2) != (a, b) && covered_by(x, a2, b2))
+                    })
+            }
         });
         let mut missing: BTreeMap<(usize, usize), (usize, Point)> = BTreeMap::new();
         for (c, &ok) in covered.iter().enumerate() {

@@ -508,3 +508,82 @@ fn tangent_joint_normal_passes_and_moved_fails() {
     let r = check(&s, &normal(3.0 * EPS));
     assert!(r.sound < 1.0, "{}", r.summary_line());
 }
+
+/// Two segments sharing the end `P = (0, 0)` at a right angle, and a point site at
+/// (0.5, 0.5) in the quadrant whose points are nearest to `P` (both segments tie
+/// there). The exact diagram, written out here: the segments' inner bisector, the
+/// parabolas of each segment and the point, and the line `x + y = 0.5` between `P`'s
+/// region and the point. `SCENE_FORMAT.md` lets either segment name `P`'s region: the
+/// diagram passes with either owner on that line, and fails with a third site's label.
+fn shared_end_diagram(owner: usize) -> (Scene, VoronoiComplex) {
+    let s = scene(vec![
+        SiteKind::Segment {
+            from: Point::new(0.0, 0.0),
+            to: Point::new(-1.0, 0.0),
+        },
+        SiteKind::Segment {
+            from: Point::new(0.0, 0.0),
+            to: Point::new(0.0, -1.0),
+        },
+        euclid(&[(0.5, 0.5)]).remove(0),
+    ]);
+    // y = (x − ½)² + ¼ above segment 0, out of the domain at y = 1
+    let top = 0.5 - 0.75f64.sqrt();
+    let parabola = |k: usize, n: usize| {
+        let x = top * (1.0 - k as f64 / n as f64);
+        Point::new(x, (x - 0.5) * (x - 0.5) + 0.25)
+    };
+    let above: Vec<Point> = (0..=200).map(|k| parabola(k, 200)).collect();
+    let right: Vec<Point> = above.iter().rev().map(|p| Point::new(p.y, p.x)).collect();
+    let line: Vec<Point> = (0..=100)
+        .map(|k| Point::new(0.5, 0.0).lerp(Point::new(0.0, 0.5), k as f64 / 100.0))
+        .collect();
+    let (at_segment_0, at_segment_1) = if owner == 0 {
+        (vec![0, 2], vec![0, 1, 2])
+    } else {
+        (vec![0, 1, 2], vec![1, 2])
+    };
+    let d = VoronoiComplex {
+        vertices: vec![
+            vertex(Point::new(0.0, 0.0), &[0, 1]),
+            vertex(Point::new(0.0, 0.5), &at_segment_0),
+            vertex(Point::new(0.5, 0.0), &at_segment_1),
+        ],
+        edges: vec![
+            edge(
+                0,
+                1,
+                Some(0),
+                None,
+                &[Point::new(0.0, 0.0), Point::new(-1.0, -1.0)],
+            ),
+            edge(0, 2, None, Some(1), &above),
+            edge(owner, 2, Some(2), Some(1), &line),
+            edge(1, 2, Some(2), None, &right),
+        ],
+        ..VoronoiComplex::default()
+    };
+    (s, d)
+}
+
+#[test]
+fn either_owner_of_a_shared_end_may_name_its_region() {
+    for owner in [0, 1] {
+        let (s, d) = shared_end_diagram(owner);
+        let r = check(&s, &d);
+        assert!(
+            r.passed,
+            "owner {owner}: {} {:?}",
+            r.summary_line(),
+            r.problems
+        );
+    }
+    // An edge between the shared end's region and the point is still needed, under
+    // whichever owner: without the line, crossings there are uncovered.
+    for owner in [0, 1] {
+        let (s, mut d) = shared_end_diagram(owner);
+        d.edges.remove(2);
+        let r = check(&s, &d);
+        assert!(r.complete < 1.0 && !r.passed, "{}", r.summary_line());
+    }
+}

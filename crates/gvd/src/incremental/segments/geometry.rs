@@ -35,6 +35,8 @@ pub(crate) enum Gen {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Line {
     pub(crate) a: Point,
+    /// The end `a + len·d`, as given (not recomputed).
+    pub(crate) b: Point,
     pub(crate) d: Point,
     pub(crate) n: Point,
     pub(crate) len: f64,
@@ -49,6 +51,7 @@ impl Line {
         let d = v * (1.0 / len);
         Line {
             a,
+            b,
             d,
             n: d.perp(),
             len,
@@ -85,6 +88,25 @@ impl Line {
 
     pub(crate) fn at(&self, u: f64, h: f64) -> Point {
         self.a + self.d * u + self.n * h
+    }
+
+    /// The common end of `self` and `other` (a point generator ending both), with the
+    /// unit directions away from it along each.
+    fn common_end(&self, other: &Line) -> Option<(Point, Point, Point)> {
+        let away = |l: &Line, p: u32| {
+            if l.ends[0] == p {
+                Some((l.a, l.d))
+            } else if l.ends[1] == p {
+                Some((l.b, l.d * -1.0))
+            } else {
+                None
+            }
+        };
+        self.ends.iter().find_map(|&p| {
+            let (at, a1) = away(self, p)?;
+            let (_, a2) = away(other, p)?;
+            Some((at, a1, a2))
+        })
     }
 }
 
@@ -166,6 +188,12 @@ pub(crate) fn ray_exit(id: u32, p: Point, dir: Point, other: Shape) -> Option<f6
 /// wider than the guess's rounding on most edges, the wide one on nearly all.
 const GUESS_BRACKETS: [f64; 2] = [1.0 / (1u64 << 40) as f64, 1.0 / (1u64 << 24) as f64];
 
+/// Below this `|a₁ + a₂|` (about the bend in radians) a joint of two segments is
+/// straight enough that their bisector is taken through the joint along its normal:
+/// the crossing of their lines divides rounding by `|a₁ + a₂|`, `1e-12` of the
+/// scene's size at this bend.
+const STRAIGHT_JOINT: f64 = 1e-4;
+
 /// A generator's geometry, for bisectors.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Shape<'a> {
@@ -241,6 +269,23 @@ impl Bisector {
                 }
             }
             (Shape::Segment(l1), Shape::Segment(l2)) => {
+                // Segments with a common end `p` (directions `a₁`, `a₂` away from it):
+                // of the two angle bisectors of their lines only the inner one, along
+                // `a₁ + a₂`, has both feet inside the segments (on the other,
+                // `(x − p)·a₁` and `(x − p)·a₂` have opposite signs). Below, its normal
+                // `n₁ ∓ n₂` has length `|a₁ + a₂|`: at a (nearly) straight joint it
+                // vanishes, and the only candidate left would be the common line.
+                // There the inner bisector is the line through `p` along `(a₁ − a₂)⊥`
+                // (the common normal at `p`), well conditioned at any bend.
+                if let Some((p, a1, a2)) = l1.common_end(l2) {
+                    if (a1 + a2).norm() < STRAIGHT_JOINT {
+                        return Bisector::Line {
+                            origin: p,
+                            dir: unit((a1 - a2).perp()),
+                            clearance: Clearance::Line(*l1),
+                        };
+                    }
+                }
                 // Points with n1·(x − a1) = ±n2·(x − a2): the line with normal n1 ∓ n2
                 // through the lines' crossing (or midway, for parallel lines); take the
                 // one nearer to `near`.
@@ -459,6 +504,69 @@ pub(crate) mod testing {
 mod tests {
     use super::testing::rng;
     use super::*;
+
+    /// Two segments with a common end, at random angles and at straight and nearly
+    /// straight joints (bends down to 1e-12 rad): their bisector goes through the end,
+    /// and along it both feet are on the segments (on one side at least), with equal
+    /// distances to the two segments there (computed here from the ends). At a
+    /// straight joint their common line would fail this: its points have one foot off
+    /// one segment.
+    #[test]
+    fn segments_with_a_common_end_meet_on_their_inner_bisector() {
+        let mut rnd = rng(0x7a3c_19e5_d00d_f00d);
+        let seg_dist = |x: Point, a: Point, b: Point| {
+            let d = b - a;
+            let u = (x - a).dot(d) / d.dot(d);
+            // Closed, to rounding: at a straight joint the feet are at the end.
+            (u > -1e-9 && u < 1.0 + 1e-9).then(|| (d.cross(x - a) / d.norm()).abs())
+        };
+        for case in 0..2000 {
+            let p = Point::new(rnd() * 100.0, rnd() * 100.0);
+            let a1 = std::f64::consts::TAU * rnd();
+            let bend = match case % 4 {
+                0 => 0.0,
+                1 => 1e-12,
+                2 => 1.5e-10 * (rnd() - 0.5),
+                _ => 6.0 * rnd() - 3.0,
+            };
+            let a2 = a1 + std::f64::consts::PI + bend;
+            let (q1, q2) = (
+                p + Point::new(a1.cos(), a1.sin()) * (1.0 + 50.0 * rnd()),
+                p + Point::new(a2.cos(), a2.sin()) * (1.0 + 50.0 * rnd()),
+            );
+            // Either segment may start or end at the common point 7.
+            let l1 = if case % 3 == 0 {
+                Line::new(q1, p, [3, 7])
+            } else {
+                Line::new(p, q1, [7, 3])
+            };
+            let l2 = if case % 5 < 2 {
+                Line::new(q2, p, [4, 7])
+            } else {
+                Line::new(p, q2, [7, 4])
+            };
+            // An edge's middle, near the inner bisector (which of the two lines it
+            // is nearer to chooses the bisector at a real bend).
+            let inner = Point::new(a1.cos() + a2.cos(), a1.sin() + a2.sin());
+            let near = p + inner * (rnd() / inner.norm().max(1e-300)) + Point::new(1e-9, 0.0);
+            let bis = Bisector::of(Shape::Segment(&l1), Shape::Segment(&l2), near);
+            let Bisector::Line { origin, dir, .. } = bis else {
+                panic!("case {case}: {bis:?}");
+            };
+            let off = dir.cross(p - origin).abs();
+            assert!(off <= 1e-12 * 100.0, "case {case}: {off} from the end");
+            let mut inside = 0;
+            for s in [-0.5, -0.1, 0.1, 0.5] {
+                let (x, t) = bis.point(p, p, (p - origin).dot(dir) + s);
+                if let (Some(d1), Some(d2)) = (seg_dist(x, q1, p), seg_dist(x, q2, p)) {
+                    assert!((d1 - d2).abs() <= 1e-9, "case {case}: {d1} vs {d2}");
+                    assert!((t - d1).abs() <= 1e-9, "case {case}: clearance {t} vs {d1}");
+                    inside += 1;
+                }
+            }
+            assert!(inside >= 2, "case {case}: no point with both feet inside");
+        }
+    }
 
     /// The closed form of `ray_exit` against bisection on the ray of the sign of
     /// `|x − p| − d(x, other)` (the distance to another point, or to a segment's line),

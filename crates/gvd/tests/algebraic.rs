@@ -67,7 +67,10 @@ proptest! {
     fn bounds_enclose_sampled_distances(
         x in -1.4f64..1.2, y in -1.4f64..1.2, w in 0.001f64..0.3, u in 0.0f64..1.0, v in 0.0f64..1.0
     ) {
-        for (f, reference) in [(astroid(), astroid_distance as fn(Point) -> f64)] {
+        for (f, reference) in [
+            (astroid(), astroid_distance as fn(Point) -> f64),
+            (circle(), circle_distance),
+        ] {
             let b = Aabb::from_array([x, y, x + w, y + w]);
             let s = f.state(&b);
             let q = b.at(u, v);

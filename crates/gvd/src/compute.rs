@@ -7,7 +7,7 @@ use crate::geom::Aabb;
 use crate::geom::{Point, PointGrid};
 use crate::incremental;
 use crate::scene::Scene;
-use crate::scene::{Metric, SiteKind};
+use crate::scene::{Metric, Mode, SiteKind};
 use crate::site::{FieldOptions, SiteField};
 use crate::subdivision;
 
@@ -113,6 +113,19 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         }
         _ => {}
     }
+    if scene.mode == Mode::MedialAxis {
+        if let Some(i) = scene
+            .sites
+            .iter()
+            .position(|s| matches!(s.kind, SiteKind::Algebraic { .. }))
+        {
+            return Err(Error::Unsupported {
+                site: i,
+                kind: "algebraic".into(),
+                message: "medial_axis mode is not computed for algebraic curves yet".into(),
+            });
+        }
+    }
     let fields = SiteField::for_scene_with(scene, &options.fields)?;
     let params = subdivision::Params {
         domain: scene.domain,
@@ -120,7 +133,24 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         max_box: options.max_box,
         parallel: options.parallel,
     };
-    let out = subdivision::run(&fields, &params);
+    let mut out = subdivision::run(&fields, &params);
+    let curves: Vec<serde_json::Value> = fields
+        .iter()
+        .enumerate()
+        .filter_map(|(i, f)| match f {
+            SiteField::Algebraic(a) => {
+                let mut s = a.stats();
+                s["site"] = serde_json::json!(i);
+                Some(s)
+            }
+            _ => None,
+        })
+        .collect();
+    if !curves.is_empty() {
+        out.complex
+            .stats
+            .insert("algebraic".into(), serde_json::json!(curves));
+    }
     Ok(Computation {
         complex: out.complex,
         boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),

@@ -129,7 +129,15 @@ impl AlgebraicField {
                 continue;
             }
             if node.leaf == NONE && diagonal(&node.bbox) > open {
-                for &c in e.children(n) {
+                // nearer child last, so that it is opened next and tightens `hi` early
+                let mut kids = [(f64::INFINITY, NONE); 2];
+                for (k, &c) in e.children(n).iter().enumerate().take(2) {
+                    kids[k] = (gap(b, &e.nodes[c as usize].bbox), c);
+                }
+                if kids[0].0 < kids[1].0 {
+                    kids.swap(0, 1);
+                }
+                for (_, c) in kids.into_iter().filter(|k| k.1 != NONE) {
                     hi = hi.min(self.witness_upper(b, c));
                     work.push(c);
                 }
@@ -194,7 +202,7 @@ fn gap(a: &Aabb, b: &Aabb) -> f64 {
     if dx == 0.0 && dy == 0.0 {
         return 0.0;
     }
-    round_down(dx.hypot(dy) * (1.0 - 4.0 * f64::EPSILON)).max(0.0)
+    round_down((dx * dx + dy * dy).sqrt() * (1.0 - 4.0 * f64::EPSILON)).max(0.0)
 }
 
 /// The unit vectors `(q − p)/|q − p|`, `q ∈ b`, `p ∈ n`; the unit square where the boxes

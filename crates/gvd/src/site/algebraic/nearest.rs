@@ -8,8 +8,6 @@
 use super::dense::Jet;
 use super::enclosure::{Enclosure, NONE};
 use crate::geom::{segment_foot, Aabb, Point};
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// The distance to the curve and a nearest point of it.
 #[derive(Clone, Copy, Debug)]
@@ -28,23 +26,27 @@ pub(super) fn nearest(
     reach: f64,
 ) -> Option<Nearest> {
     let root = e.root()?;
-    // non-negative f64 order as their bits
-    let key = |d: f64| Reverse(d.max(0.0).to_bits());
-    let mut heap = BinaryHeap::new();
-    heap.push((key(e.nodes[root as usize].bbox.outside_distance(q)), root));
+    // depth-first, nearer child first (the tree is binary: one pending sibling a level)
+    let mut stack: Vec<(f64, u32)> = Vec::with_capacity(96);
+    stack.push((box_distance(q, &e.nodes[root as usize].bbox), root));
     let mut sample = (f64::INFINITY, q);
     let mut chord = (f64::INFINITY, q);
-    while let Some((Reverse(bits), n)) = heap.pop() {
-        let lo = f64::from_bits(bits);
+    while let Some((lo, n)) = stack.pop() {
         if lo > sample.0.min(chord.0) {
-            break;
+            continue;
         }
         let node = &e.nodes[n as usize];
         if node.leaf == NONE {
-            for &c in e.children(n) {
-                let d = e.nodes[c as usize].bbox.outside_distance(q);
-                if d <= sample.0.min(chord.0) {
-                    heap.push((key(d), c));
+            let mut kids: [(f64, u32); 2] = [(f64::INFINITY, NONE); 2];
+            for (k, &c) in e.children(n).iter().enumerate().take(2) {
+                kids[k] = (box_distance(q, &e.nodes[c as usize].bbox), c);
+            }
+            if kids[0].0 < kids[1].0 {
+                kids.swap(0, 1);
+            }
+            for kid in kids {
+                if kid.1 != NONE && kid.0 <= sample.0.min(chord.0) {
+                    stack.push(kid);
                 }
             }
             continue;
@@ -83,6 +85,13 @@ pub(super) fn nearest(
         }
     }
     Some(best)
+}
+
+/// The distance from `q` to the box `b` (0 inside).
+fn box_distance(q: Point, b: &Aabb) -> f64 {
+    let dx = (b.min.x - q.x).max(q.x - b.max.x).max(0.0);
+    let dy = (b.min.y - q.y).max(q.y - b.max.y).max(0.0);
+    (dx * dx + dy * dy).sqrt()
 }
 
 /// Newton's method on the foot-point system from `start`; `None` when it leaves the

@@ -132,6 +132,19 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         }
         _ => {}
     }
+    if scene.mode() == Mode::MedialAxis {
+        if let Some(i) = scene
+            .sites()
+            .iter()
+            .position(|s| matches!(s.kind, SiteKind::Algebraic { .. }))
+        {
+            return Err(Error::Unsupported {
+                site: i,
+                kind: "algebraic".into(),
+                message: "medial_axis mode is not computed for algebraic curves yet".into(),
+            });
+        }
+    }
     let params = subdivision::Params::for_scene(
         scene,
         options.subdivision.max_box,

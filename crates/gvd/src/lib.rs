@@ -66,8 +66,9 @@ pub mod internals {
     pub use crate::cells::build_cells;
     pub use crate::incremental::{points_voronoi, Face, PointDiagram};
     pub use crate::num::bernstein::{Bernstein1, Bernstein2, Bernstein3};
+    pub use crate::num::poly::Poly;
     pub use crate::num::roots;
     pub use crate::num::Interval;
-    pub use crate::site::{DistanceField, SiteField};
+    pub use crate::site::{AlgebraicField, DistanceField, SiteField};
     pub use crate::subdivision::{run as subdivide, Params as SubdivisionParams};
 }

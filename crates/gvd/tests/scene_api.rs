@@ -125,3 +125,25 @@ fn code_and_json_build_the_same_scene() {
     assert!(!diagram.edges.is_empty());
     diagram.check_invariants().unwrap();
 }
+
+#[test]
+fn tangent_circles_are_accepted_even_where_rounding_makes_them_overlap() {
+    // |(-1, 0) − (0, −√3)| rounds to just below 2 = r + r
+    let sites = vec![
+        Site::circle([-1.0, 0.0], 1.0),
+        Site::circle([0.0, -1.7320508075688772], 1.0),
+    ];
+    assert!(Scene::new(domain(), 1e-2, Mode::Voronoi, sites).is_ok());
+    let overlapping = vec![
+        Site::circle([-1.0, 0.0], 1.0),
+        Site::circle([0.0, -1.7], 1.0),
+    ];
+    assert!(matches!(
+        Scene::new(domain(), 1e-2, Mode::Voronoi, overlapping),
+        Err(Error::Conflict {
+            site: 1,
+            other: 0,
+            ..
+        })
+    ));
+}

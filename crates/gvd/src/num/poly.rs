@@ -76,6 +76,7 @@ impl Poly {
         Poly { terms: out }
     }
 
+    /// Whether every coefficient is zero.
     pub fn is_zero(&self) -> bool {
         self.terms.is_empty()
     }
@@ -153,14 +154,17 @@ impl Poly {
         Poly::from_terms(terms)
     }
 
+    /// The sum.
     pub fn add(&self, o: &Poly) -> Poly {
         self.merge(o, 1.0)
     }
 
+    /// The difference.
     pub fn sub(&self, o: &Poly) -> Poly {
         self.merge(o, -1.0)
     }
 
+    /// The negation.
     pub fn neg(&self) -> Poly {
         self.scale(-1.0)
     }

@@ -1,6 +1,8 @@
-//! Certified real root isolation for univariate Bernstein forms on `[0, 1]`.
+//! Certified real root isolation: univariate Bernstein forms on `[0, 1]` ([`isolate`]),
+//! and square systems of two bivariate polynomials over a box ([`solve_system`],
+//! subdivision with Bernstein exclusion and the Krawczyk test; its own section below).
 //!
-//! Subdivision (at midpoints, or at `3/8`, `5/8` when the midpoint value is within
+//! **Univariate.** //! Subdivision (at midpoints, or at `3/8`, `5/8` when the midpoint value is within
 //! rounding of zero; piece ends are exact fixed-point numbers) with two tests on the
 //! coefficients `b_i` of a piece, each counted as `+` (`b_i > err`), `−` (`b_i < −err`)
 //! or unknown (`|b_i| ≤ err`, the exact coefficient may be zero or of either sign):
@@ -14,7 +16,10 @@
 //! pieces are reported as uncertified, so every call terminates quickly. No root is ever
 //! missed: a piece is dropped only by the exclusion test.
 
-use crate::num::bernstein::Bernstein1;
+use crate::geom::{Aabb, Axis, Point};
+use crate::num::bernstein::{Bernstein1, Bernstein2};
+use crate::num::poly::Poly;
+use crate::num::Interval;
 
 /// Largest number of pieces one call examines.
 pub const MAX_PIECES: usize = 1 << 16;
@@ -269,6 +274,348 @@ pub fn refine(b: &Bernstein1, mut lo: f64, mut hi: f64) -> f64 {
     }
 }
 
+// ---------------------------------------------------------------------------------------
+// Square systems of two bivariate polynomials: subdivision + Krawczyk.
+
+/// Options of [`solve_system`].
+#[derive(Clone, Copy, Debug)]
+pub struct SystemOptions {
+    /// Boxes whose longest side is at most this are not split further: what survives
+    /// there is reported as an uncertified cluster.
+    pub min_size: f64,
+    /// Largest number of boxes examined; the boxes left unexplored when it is reached
+    /// are reported as uncertified clusters, so every call terminates quickly.
+    pub max_boxes: usize,
+}
+
+impl SystemOptions {
+    /// `min_size` a millionth of the domain's longest side, at most `2¹⁶` boxes.
+    pub fn for_domain(domain: &Aabb) -> Self {
+        SystemOptions {
+            min_size: 1e-6 * domain.longest_side(),
+            max_boxes: 1 << 16,
+        }
+    }
+}
+
+/// A region of the plane holding solutions of a system (see [`solve_system`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SystemRoot {
+    /// Every solution this entry stands for lies in this box.
+    pub enclosure: Aabb,
+    /// True: exactly one solution in `enclosure`, a simple one (nonsingular Jacobian),
+    /// proved by the Krawczyk test. False: a cluster of boxes that could be neither
+    /// excluded nor certified (no solution, several, or a singular one such as a
+    /// tangency); the cluster is the hull of the boxes.
+    pub certified: bool,
+    /// The solution refined by Newton's method (certified roots), or the point of the
+    /// cluster with the smallest residual found (f64, not certified).
+    pub point: Point,
+}
+
+/// The box `b` with the Bernstein forms of the system (and of the side conditions).
+struct SystemBox {
+    b: Aabb,
+    forms: Vec<Bernstein2>,
+}
+
+/// Solves `f = g = 0` in `domain`, with optional `side` conditions (polynomials that
+/// must also vanish at the solutions sought, used only to exclude boxes: e.g. `f` for
+/// the singular points `f = f_x = f_y = 0`, solved as the square system `f_x = f_y = 0`).
+///
+/// Subdivision in halves along the longer side. A box is **excluded** when the
+/// Bernstein range of one polynomial over it excludes 0 (convex-hull property; the forms
+/// are computed over each box from `Poly`, so they are exact for the f64 box). A box is
+/// **certified** by the Krawczyk operator
+/// `K(X) = m − Y·F(m) + (I − Y·J(X))·(X − m)` with `m` the centre, `J(X)` an interval
+/// Jacobian (Bernstein ranges of the partial derivatives) and `Y ≈ J(m)⁻¹`:
+/// `K(X) ⊂ int X` proves a unique, simple root in `X` (Krawczyk 1969; Moore), and
+/// `K(X) ∩ X = ∅` proves none. The test runs on `X` inflated by a quarter around its
+/// centre, so roots on a box side are certified too; duplicates found from neighbouring
+/// boxes are merged (a certified enclosure inside another's uniqueness region is the
+/// same root). A certified enclosure is then contracted (`X ← K(X) ∩ X`) and dropped
+/// when a side condition excludes 0 over it; otherwise the side conditions are not
+/// decided there (their zero is a measure-zero condition no interval test proves).
+/// Boxes reaching `min_size` unresolved are merged into clusters of touching boxes.
+/// No solution is ever lost: a box is dropped only when excluded.
+pub fn solve_system(
+    f: &Poly,
+    g: &Poly,
+    side: &[Poly],
+    domain: &Aabb,
+    opts: &SystemOptions,
+) -> Vec<SystemRoot> {
+    let system = [f, g];
+    let jacobian = [f.partial(0), f.partial(1), g.partial(0), g.partial(1)];
+    let polys: Vec<&Poly> = system.iter().copied().chain(side.iter()).collect();
+    let make = |b: Aabb| SystemBox {
+        forms: polys.iter().map(|p| Bernstein2::from_poly(p, &b)).collect(),
+        b,
+    };
+    // certified: (uniqueness region, enclosure K, refined point)
+    let mut certified: Vec<(Aabb, Aabb, Point)> = Vec::new();
+    let mut unresolved: Vec<Aabb> = Vec::new();
+    let mut stack = vec![make(*domain)];
+    let mut boxes = 0;
+    while let Some(sb) = stack.pop() {
+        boxes += 1;
+        if sb.forms.iter().any(|form| form.range().excludes_zero()) {
+            continue;
+        }
+        if boxes > opts.max_boxes {
+            unresolved.push(sb.b);
+            continue;
+        }
+        match krawczyk(system, &jacobian, &inflate(&sb.b, 0.25)) {
+            Krawczyk::Unique { region, enclosure } => {
+                let enclosure = contract(system, &jacobian, enclosure);
+                let excluded = polys[2..]
+                    .iter()
+                    .any(|p| Bernstein2::from_poly(p, &enclosure).range().excludes_zero());
+                if !excluded && intersect(&enclosure, &sb.b).is_some() {
+                    let p = newton_refine(system, &jacobian, &enclosure);
+                    certified.push((region, enclosure, p));
+                }
+                continue;
+            }
+            Krawczyk::NoRoot => continue,
+            Krawczyk::Unknown => {}
+        }
+        if sb.b.longest_side() <= opts.min_size {
+            unresolved.push(sb.b);
+            continue;
+        }
+        let (axis, at) = if sb.b.width() >= sb.b.height() {
+            (Axis::X, sb.b.center().x)
+        } else {
+            (Axis::Y, sb.b.center().y)
+        };
+        let (lo, hi) = sb.b.split(axis, at);
+        let ends = match axis {
+            Axis::X => (sb.b.min.x, sb.b.max.x),
+            Axis::Y => (sb.b.min.y, sb.b.max.y),
+        };
+        if !(ends.0 < at && at < ends.1) {
+            unresolved.push(sb.b); // no room left in f64
+            continue;
+        }
+        stack.push(make(hi));
+        stack.push(make(lo));
+    }
+    let mut out: Vec<SystemRoot> = Vec::new();
+    for (k, &(_, enclosure, point)) in certified.iter().enumerate() {
+        let duplicate = certified[..k].iter().any(|(region, e, p)| {
+            inside(&enclosure, region) || (e.contains(point) && enclosure.contains(*p))
+        });
+        if !duplicate {
+            out.push(SystemRoot {
+                enclosure,
+                certified: true,
+                point,
+            });
+        }
+    }
+    for cluster in clusters(unresolved) {
+        let point = best_point(system, &jacobian, &cluster);
+        out.push(SystemRoot {
+            enclosure: cluster,
+            certified: false,
+            point,
+        });
+    }
+    out
+}
+
+enum Krawczyk {
+    /// A unique simple root in `region`, lying in `enclosure ⊂ region`.
+    Unique {
+        region: Aabb,
+        enclosure: Aabb,
+    },
+    NoRoot,
+    Unknown,
+}
+
+/// The Krawczyk test of the system over `x` (see [`solve_system`]).
+fn krawczyk(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Krawczyk {
+    let Some(kb) = krawczyk_image(system, jacobian, x) else {
+        return Krawczyk::Unknown;
+    };
+    if kb.min.x > x.min.x && kb.max.x < x.max.x && kb.min.y > x.min.y && kb.max.y < x.max.y {
+        Krawczyk::Unique {
+            region: *x,
+            enclosure: kb,
+        }
+    } else if intersect(&kb, x).is_none() {
+        Krawczyk::NoRoot
+    } else {
+        Krawczyk::Unknown
+    }
+}
+
+/// Shrinks the enclosure of a certified root: every root in `X` lies in `K(X) ∩ X`,
+/// iterated while it at least halves.
+fn contract(system: [&Poly; 2], jacobian: &[Poly; 4], mut x: Aabb) -> Aabb {
+    for _ in 0..64 {
+        let Some(k) = krawczyk_image(system, jacobian, &x).and_then(|k| intersect(&k, &x)) else {
+            break;
+        };
+        let shrunk = k.longest_side() <= 0.5 * x.longest_side();
+        x = k;
+        if !shrunk {
+            break;
+        }
+    }
+    x
+}
+
+/// The Krawczyk image `K(X)` as a box; `None` where it cannot be formed (a singular
+/// Jacobian at the centre, or overflow).
+fn krawczyk_image(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<Aabb> {
+    let m = x.center();
+    let (mx, my) = (Interval::point(m.x), Interval::point(m.y));
+    let zero = Interval::point(0.0);
+    let fm = [
+        system[0].eval_interval(mx, my, zero),
+        system[1].eval_interval(mx, my, zero),
+    ];
+    let j: Vec<Interval> = jacobian
+        .iter()
+        .map(|p| Bernstein2::from_poly(p, x).range())
+        .collect();
+    let jm: Vec<f64> = jacobian.iter().map(|p| p.eval(m.x, m.y, 0.0)).collect();
+    let det = jm[0] * jm[3] - jm[1] * jm[2];
+    let finite = |i: &Interval| i.lo.is_finite() && i.hi.is_finite();
+    if !(det.is_finite() && det != 0.0 && fm.iter().chain(&j).all(finite)) {
+        return None;
+    }
+    let y = [jm[3] / det, -jm[1] / det, -jm[2] / det, jm[0] / det].map(Interval::point);
+    let d = [x.x() - m.x, x.y() - m.y];
+    let one = Interval::point(1.0);
+    // row r of K: m_r − (Y F(m))_r + Σ_c (δ_rc − (Y J)_rc) d_c
+    let mut k = [zero; 2];
+    for (r, kr) in k.iter_mut().enumerate() {
+        let yf = y[2 * r] * fm[0] + y[2 * r + 1] * fm[1];
+        let mut acc = Interval::point(if r == 0 { m.x } else { m.y }) - yf;
+        for (c, dc) in d.iter().enumerate() {
+            let yj = y[2 * r] * j[c] + y[2 * r + 1] * j[2 + c];
+            let delta = if r == c { one } else { zero };
+            acc = acc + (delta - yj) * *dc;
+        }
+        *kr = acc;
+    }
+    k.iter()
+        .all(finite)
+        .then(|| Aabb::new(Point::new(k[0].lo, k[1].lo), Point::new(k[0].hi, k[1].hi)))
+}
+
+/// One Newton step for the system at `p`; `None` where the Jacobian is singular.
+fn newton_step(system: [&Poly; 2], jacobian: &[Poly; 4], p: Point) -> Option<Point> {
+    let f = [system[0].eval(p.x, p.y, 0.0), system[1].eval(p.x, p.y, 0.0)];
+    let j: Vec<f64> = jacobian.iter().map(|q| q.eval(p.x, p.y, 0.0)).collect();
+    let det = j[0] * j[3] - j[1] * j[2];
+    if !(det.is_finite() && det != 0.0) {
+        return None;
+    }
+    let dx = (j[3] * f[0] - j[1] * f[1]) / det;
+    let dy = (j[0] * f[1] - j[2] * f[0]) / det;
+    Some(Point::new(p.x - dx, p.y - dy))
+}
+
+/// Newton's method from the centre of `enclosure`, kept inside it (f64, not certified;
+/// the certificate is the enclosure).
+fn newton_refine(system: [&Poly; 2], jacobian: &[Poly; 4], enclosure: &Aabb) -> Point {
+    let mut p = enclosure.center();
+    for _ in 0..60 {
+        let Some(next) = newton_step(system, jacobian, p) else {
+            break;
+        };
+        let next = enclosure.clamp(next);
+        if next == p {
+            break;
+        }
+        p = next;
+    }
+    p
+}
+
+/// The point of a cluster with the smallest residual among its centre and the Newton
+/// iterates from it that stay inside.
+fn best_point(system: [&Poly; 2], jacobian: &[Poly; 4], cluster: &Aabb) -> Point {
+    let residual =
+        |p: Point| system[0].eval(p.x, p.y, 0.0).abs() + system[1].eval(p.x, p.y, 0.0).abs();
+    let mut p = cluster.center();
+    let mut best = (residual(p), p);
+    for _ in 0..30 {
+        match newton_step(system, jacobian, p) {
+            Some(next) if cluster.contains(next) => p = next,
+            _ => break,
+        }
+        let r = residual(p);
+        if r < best.0 {
+            best = (r, p);
+        }
+    }
+    best.1
+}
+
+/// `b` grown by `frac` of its sides on each side.
+fn inflate(b: &Aabb, frac: f64) -> Aabb {
+    let (dx, dy) = (frac * b.width(), frac * b.height());
+    Aabb::new(
+        Point::new(b.min.x - dx, b.min.y - dy),
+        Point::new(b.max.x + dx, b.max.y + dy),
+    )
+}
+
+/// The intersection of two closed boxes, if not empty.
+fn intersect(a: &Aabb, b: &Aabb) -> Option<Aabb> {
+    let min = Point::new(a.min.x.max(b.min.x), a.min.y.max(b.min.y));
+    let max = Point::new(a.max.x.min(b.max.x), a.max.y.min(b.max.y));
+    (min.x <= max.x && min.y <= max.y).then_some(Aabb::new(min, max))
+}
+
+/// `a ⊂ b`.
+fn inside(a: &Aabb, b: &Aabb) -> bool {
+    b.contains(a.min) && b.contains(a.max)
+}
+
+/// The hulls of the connected groups of touching (closed) boxes.
+fn clusters(boxes: Vec<Aabb>) -> Vec<Aabb> {
+    let n = boxes.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    // boxes are few (the unresolved ones): the quadratic scan is fine
+    for i in 0..n {
+        for j in i + 1..n {
+            if intersect(&boxes[i], &boxes[j]).is_some() {
+                let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                parent[a] = b;
+            }
+        }
+    }
+    let mut hulls: Vec<(usize, Aabb)> = Vec::new();
+    for (i, b) in boxes.iter().enumerate() {
+        let r = find(&mut parent, i);
+        match hulls.iter_mut().find(|h| h.0 == r) {
+            Some(h) => {
+                h.1 = Aabb::new(
+                    Point::new(h.1.min.x.min(b.min.x), h.1.min.y.min(b.min.y)),
+                    Point::new(h.1.max.x.max(b.max.x), h.1.max.y.max(b.max.y)),
+                )
+            }
+            None => hulls.push((r, *b)),
+        }
+    }
+    hulls.into_iter().map(|h| h.1).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -424,5 +771,111 @@ mod tests {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod system_tests {
+    use super::*;
+
+    fn poly(s: &str) -> Poly {
+        Poly::parse(s, &['x', 'y']).unwrap()
+    }
+
+    fn solve(f: &str, g: &str, d: [f64; 4]) -> Vec<SystemRoot> {
+        let domain = Aabb::from_array(d);
+        solve_system(
+            &poly(f),
+            &poly(g),
+            &[],
+            &domain,
+            &SystemOptions::for_domain(&domain),
+        )
+    }
+
+    /// Every expected root lies in exactly one certified enclosure, whose point is at it.
+    fn assert_certified(roots: &[SystemRoot], expected: &[Point]) {
+        assert_eq!(roots.len(), expected.len(), "{roots:?}");
+        for e in expected {
+            let holding: Vec<_> = roots.iter().filter(|r| r.enclosure.contains(*e)).collect();
+            assert_eq!(holding.len(), 1, "{e:?} in {roots:?}");
+            assert!(holding[0].certified, "{holding:?}");
+            assert!(holding[0].point.dist(*e) < 1e-12, "{holding:?} vs {e:?}");
+            assert!(holding[0].enclosure.longest_side() < 1e-3);
+        }
+    }
+
+    #[test]
+    fn circle_and_line() {
+        let (x, y) = (2.0 / 5f64.sqrt(), 1.0 / 5f64.sqrt());
+        let roots = solve("x^2 + y^2 - 1", "y - x/2", [-2.0, -2.0, 2.0, 2.0]);
+        assert_certified(&roots, &[Point::new(x, y), Point::new(-x, -y)]);
+    }
+
+    #[test]
+    fn two_conics_meet_four_times() {
+        let t = 2.0 / 5f64.sqrt();
+        let roots = solve("x^2/4 + y^2 - 1", "x^2 + y^2/4 - 1", [-3.0, -3.0, 3.0, 3.0]);
+        let expected = [(t, t), (-t, t), (t, -t), (-t, -t)].map(|(x, y)| Point::new(x, y));
+        assert_certified(&roots, &expected);
+    }
+
+    #[test]
+    fn roots_on_box_sides_are_found_once() {
+        // the roots (±1, 0) lie on the split line x = 0 ± 1 of a [−1, 1] box's halves,
+        // and on the domain's sides
+        let roots = solve("x^2 - 1", "y", [-1.0, -1.0, 1.0, 1.0]);
+        assert_certified(&roots, &[Point::new(1.0, 0.0), Point::new(-1.0, 0.0)]);
+        let roots = solve("x^2 + y^2 - 1", "x - y", [-2.0, -2.0, 2.0, 2.0]);
+        let s = 0.5f64.sqrt();
+        assert_certified(&roots, &[Point::new(s, s), Point::new(-s, -s)]);
+    }
+
+    #[test]
+    fn tangency_is_an_uncertified_cluster() {
+        // the line y = 1 touches the unit circle at (0, 1): a double root
+        let roots = solve("x^2 + y^2 - 1", "y - 1", [-2.0, -2.0, 2.0, 2.0]);
+        assert!(!roots.is_empty());
+        assert!(roots.iter().all(|r| !r.certified), "{roots:?}");
+        let at = Point::new(0.0, 1.0);
+        let holding: Vec<_> = roots.iter().filter(|r| r.enclosure.contains(at)).collect();
+        assert_eq!(holding.len(), 1, "{roots:?}");
+        assert!(holding[0].enclosure.longest_side() < 1e-3, "{holding:?}");
+        // nothing far from the tangency survives
+        for r in &roots {
+            assert!(r.enclosure.center().dist(at) < 1e-2, "{r:?}");
+        }
+    }
+
+    #[test]
+    fn no_root_and_side_conditions() {
+        assert!(solve("x^2 + y^2 + 1", "x - y", [-2.0, -2.0, 2.0, 2.0]).is_empty());
+        // singular points of the node y² − x²(x + 1) = 0: f_x = f_y = 0 at (0, 0) and
+        // (−2/3, 0); only the first is on the curve
+        let f = poly("y^2 - x^2*(x + 1)");
+        let domain = Aabb::from_array([-2.0, -2.0, 2.0, 2.0]);
+        let roots = solve_system(
+            &f.partial(0),
+            &f.partial(1),
+            std::slice::from_ref(&f),
+            &domain,
+            &SystemOptions::for_domain(&domain),
+        );
+        assert_certified(&roots, &[Point::new(0.0, 0.0)]);
+    }
+
+    #[test]
+    fn budget_bounds_the_work() {
+        // f = g: a whole curve of solutions, reported as clusters within the budget
+        let domain = Aabb::from_array([-2.0, -2.0, 2.0, 2.0]);
+        let f = poly("x^2 + y^2 - 1");
+        let opts = SystemOptions {
+            min_size: 1e-9,
+            max_boxes: 2000,
+        };
+        let roots = solve_system(&f, &f, &[], &domain, &opts);
+        assert!(!roots.is_empty() && roots.iter().all(|r| !r.certified));
+        let on = Point::new(0.6, 0.8);
+        assert!(roots.iter().any(|r| r.enclosure.contains(on)));
     }
 }

@@ -1,6 +1,7 @@
 //! Sites as distance fields. The subdivision engine sees only the [`DistanceField`]
 //! trait; each site family lives in its own file and [`SiteField`] dispatches to it.
 
+pub mod algebraic;
 mod circle;
 mod ellipse;
 mod euclidean;
@@ -8,6 +9,7 @@ pub mod implicit;
 mod lp;
 mod polynomial;
 
+pub use algebraic::{AlgebraicField, AlgebraicState};
 pub use circle::CircleField;
 pub use ellipse::EllipseField;
 pub use euclidean::EuclideanPoint;
@@ -98,6 +100,8 @@ pub enum SiteField {
     Implicit(Box<ImplicitField>),
     /// An ellipse: implicit box bounds, closed-form point values.
     Ellipse(Box<EllipseField>),
+    /// An algebraic curve: its own [`DistanceField`], delegated to.
+    Algebraic(Box<AlgebraicField>),
 }
 
 /// The per-box state of a [`SiteField`].
@@ -106,6 +110,7 @@ pub enum FieldState {
     None,
     Bernstein(Bernstein2),
     Implicit(Box<ImplicitState>),
+    Algebraic(Box<AlgebraicState>),
 }
 
 /// Choices among equivalent fields for a site kind.
@@ -133,7 +138,22 @@ impl SiteField {
         domain: &Aabb,
         options: &FieldOptions,
     ) -> Result<SiteField, Error> {
+        SiteField::from_site_at(index, kind, domain, 1e-3 * domain.longest_side(), options)
+    }
+
+    /// [`SiteField::from_site_with`] at the scene's resolution `epsilon` (curves are
+    /// enclosed to it).
+    fn from_site_at(
+        index: usize,
+        kind: &SiteKind,
+        domain: &Aabb,
+        epsilon: f64,
+        options: &FieldOptions,
+    ) -> Result<SiteField, Error> {
         match kind {
+            SiteKind::Algebraic { equation, clip } => Ok(SiteField::Algebraic(Box::new(
+                AlgebraicField::new(index, equation.poly(), clip.unwrap_or(*domain), epsilon)?,
+            ))),
             SiteKind::Circle { center, radius } => Ok(if options.implicit_circles {
                 SiteField::Implicit(Box::new(ImplicitField::circle(*center, *radius)))
             } else {
@@ -176,7 +196,9 @@ impl SiteField {
             .sites()
             .iter()
             .enumerate()
-            .map(|(i, s)| SiteField::from_site_with(i, &s.kind, &scene.domain(), options))
+            .map(|(i, s)| {
+                SiteField::from_site_at(i, &s.kind, &scene.domain(), scene.epsilon(), options)
+            })
             .collect()
     }
 }
@@ -190,6 +212,7 @@ impl DistanceField for SiteField {
             SiteField::Polynomial(f) => FieldState::Bernstein(f.bernstein(b)),
             SiteField::Implicit(f) => FieldState::Implicit(Box::new(f.state(b))),
             SiteField::Ellipse(f) => FieldState::Implicit(Box::new(f.state(b))),
+            SiteField::Algebraic(f) => FieldState::Algebraic(Box::new(f.state(b))),
         }
     }
 
@@ -213,7 +236,14 @@ impl DistanceField for SiteField {
                     FieldState::Implicit(Box::new(r)),
                 )
             }
-            (SiteField::Implicit(_) | SiteField::Ellipse(_), _) => {
+            (SiteField::Algebraic(f), FieldState::Algebraic(st)) => {
+                let (l, r) = f.split(st, b, axis, at);
+                (
+                    FieldState::Algebraic(Box::new(l)),
+                    FieldState::Algebraic(Box::new(r)),
+                )
+            }
+            (SiteField::Implicit(_) | SiteField::Ellipse(_) | SiteField::Algebraic(_), _) => {
                 let (lb, rb) = b.split(axis, at);
                 (self.state(&lb), self.state(&rb))
             }
@@ -232,6 +262,8 @@ impl DistanceField for SiteField {
             (SiteField::Implicit(f), _) => f.bound(&f.state(b)),
             (SiteField::Ellipse(f), FieldState::Implicit(st)) => f.bound(st),
             (SiteField::Ellipse(f), _) => f.bound(&f.state(b)),
+            (SiteField::Algebraic(f), FieldState::Algebraic(st)) => f.bound(st, b),
+            (SiteField::Algebraic(f), _) => f.bound(&f.state(b), b),
         }
     }
 
@@ -248,6 +280,8 @@ impl DistanceField for SiteField {
             (SiteField::Implicit(f), _) => f.gradient_bound(&f.state(b), b),
             (SiteField::Ellipse(f), FieldState::Implicit(st)) => f.gradient_bound(st, b),
             (SiteField::Ellipse(f), _) => f.gradient_bound(&f.state(b), b),
+            (SiteField::Algebraic(f), FieldState::Algebraic(st)) => f.gradient_bound(st, b),
+            (SiteField::Algebraic(f), _) => f.gradient_bound(&f.state(b), b),
         }
     }
 
@@ -259,6 +293,7 @@ impl DistanceField for SiteField {
             SiteField::Circle(c) => c.value(q),
             SiteField::Implicit(f) => f.value(q),
             SiteField::Ellipse(f) => f.value(q),
+            SiteField::Algebraic(f) => f.value(q),
         }
     }
 
@@ -270,6 +305,7 @@ impl DistanceField for SiteField {
             SiteField::Circle(c) => c.gradient(q),
             SiteField::Implicit(f) => f.gradient(q),
             SiteField::Ellipse(f) => f.gradient(q),
+            SiteField::Algebraic(f) => f.gradient(q),
         }
     }
 

@@ -74,7 +74,9 @@ pub fn run_scene(
     let Some(s) = scene.unit_scale() else {
         check_field_range(scene)?;
         let fields = SiteField::for_scene_with(scene, field_options)?;
-        return run(&fields, params);
+        let mut out = run(&fields, params)?;
+        add_curve_stats(&fields, &mut out.complex);
+        return Ok(out);
     };
     let scaled = scene.scaled(s);
     let fields = SiteField::for_scene_with(&scaled, field_options)?;
@@ -97,6 +99,25 @@ pub fn run_scene(
     }
     stats.insert("rescaled_by".into(), json!(s));
     Ok(out)
+}
+
+/// Records each algebraic curve's enclosure figures in `stats.algebraic`.
+fn add_curve_stats(fields: &[SiteField], complex: &mut VoronoiComplex) {
+    let curves: Vec<serde_json::Value> = fields
+        .iter()
+        .enumerate()
+        .filter_map(|(i, f)| match f {
+            SiteField::Algebraic(a) => {
+                let mut s = a.stats();
+                s["site"] = json!(i);
+                Some(s)
+            }
+            _ => None,
+        })
+        .collect();
+    if !curves.is_empty() {
+        complex.stats.insert("algebraic".into(), json!(curves));
+    }
 }
 
 /// `scene` with each nearly round ellipse (semi-axes `a`, `b` within `epsilon / 16`)

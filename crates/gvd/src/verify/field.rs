@@ -2,10 +2,11 @@
 //! (`SCENE_FORMAT.md`, "Site kinds" and "Point metrics"). Nothing here is shared with
 //! the algorithms.
 
+use super::curve::Curve;
 use crate::error::Error;
 use crate::geom::Point;
 use crate::num::poly::Poly;
-use crate::scene::{Metric, SiteKind};
+use crate::scene::{Metric, Scene, SiteKind};
 use std::f64::consts::TAU;
 
 /// One site's distance field, prepared for evaluation.
@@ -45,6 +46,8 @@ pub(super) enum Field {
     Poly { f: Poly, h: f64 },
     /// the smallest non-negative root `z` of `g(x, y, z)`, 0 if none
     Implicit { g: Poly, h: f64 },
+    /// distance to the algebraic curve `{f = 0} ∩ clip`, densely sampled
+    Curve(Box<Curve>),
 }
 
 /// How far the field can drop near its anchor: `field(q) ≥ lower(|q − anchor|)`,
@@ -68,8 +71,14 @@ impl Bound {
 
 impl Field {
     /// The field of the whole site `site` (index `i`), or `Unsupported` for a kind the
-    /// checker cannot evaluate. `h` is the step of the central differences.
-    pub(super) fn of_site(i: usize, site: &SiteKind, h: f64) -> Result<Field, Error> {
+    /// checker cannot evaluate. `h` is the step of the central differences; the scene
+    /// gives algebraic curves their default clip box and sampling resolution.
+    pub(super) fn of_site(
+        i: usize,
+        site: &SiteKind,
+        h: f64,
+        scene: &Scene,
+    ) -> Result<Field, Error> {
         Ok(match site {
             SiteKind::Point { at, metric } => match *metric {
                 Metric::Euclidean => Field::Euclid { p: *at },
@@ -131,6 +140,18 @@ impl Field {
                 g: equation.poly().clone(),
                 h,
             },
+            SiteKind::Algebraic { equation, clip } => {
+                let clip = clip.unwrap_or(scene.domain());
+                let curve = Curve::new(equation.poly(), clip, 0.25 * scene.epsilon());
+                if curve.foot(clip.center()).is_none() {
+                    return Err(Error::Unsupported {
+                        site: i,
+                        kind: site.name().to_string(),
+                        message: "the checker finds no point of the curve in its clip box".into(),
+                    });
+                }
+                Field::Curve(Box::new(curve))
+            }
             other => {
                 return Err(Error::Unsupported {
                     site: i,
@@ -213,7 +234,9 @@ impl Field {
             Field::Chain { lo, hi, .. } => radial(lo.lerp(hi, 0.5), 0.5 * lo.dist(hi)),
             Field::Arc { c, r, .. } => radial(c, r),
             Field::Ellipse { c, a, b, .. } => radial(c, a.max(b)),
-            Field::Poly { .. } | Field::Implicit { .. } => (Point::default(), Bound::None),
+            Field::Poly { .. } | Field::Implicit { .. } | Field::Curve(_) => {
+                (Point::default(), Bound::None)
+            }
         }
     }
 
@@ -232,7 +255,9 @@ impl Field {
             }
             Field::Circle { c, r } => q.dist(c) - r,
             Field::Segment { a, b } => q.dist(crate::geom::segment_foot(q, a, b)),
-            Field::Arc { .. } | Field::Chain { .. } => q.dist(self.foot(q).unwrap_or(q)),
+            Field::Arc { .. } | Field::Chain { .. } | Field::Curve(_) => {
+                q.dist(self.foot(q).unwrap_or(q))
+            }
             Field::Ellipse { .. } if self.inside(q) => 0.0,
             Field::Ellipse { .. } => q.dist(self.foot(q).unwrap_or(q)),
             Field::Poly { ref f, .. } => f.eval(q.x, q.y, 0.0),
@@ -274,7 +299,8 @@ impl Field {
             Field::Segment { .. }
             | Field::Chain { .. }
             | Field::Arc { .. }
-            | Field::Ellipse { .. } => match self.foot(q) {
+            | Field::Ellipse { .. }
+            | Field::Curve(_) => match self.foot(q) {
                 Some(f) if !self.inside(q) => (q.dist(f), unit(q - f)),
                 _ => (0.0, Point::default()),
             },
@@ -325,6 +351,7 @@ impl Field {
                 let f = ellipse_foot(a, b, local);
                 Some(c + Point::new(co * f.x - s * f.y, s * f.x + co * f.y))
             }
+            Field::Curve(ref c) => c.foot(q),
             Field::Poly { .. } | Field::Implicit { .. } => None,
         }
     }

@@ -216,13 +216,13 @@ impl Gens {
                         end_angle,
                     } => g.add_arc(i, *center, *radius, *start_angle, *end_angle),
                     other => {
-                        let f = Field::of_site(i, other, h)?;
+                        let f = Field::of_site(i, other, h, scene)?;
                         let curved = matches!(f, Field::Ellipse { .. });
                         g.push(f, i, None, curved);
                     }
                 }
             } else {
-                let f = Field::of_site(i, kind, h)?;
+                let f = Field::of_site(i, kind, h, scene)?;
                 let curved = matches!(f, Field::Arc { .. } | Field::Ellipse { .. });
                 g.push(f, i, None, curved);
             }

@@ -44,6 +44,7 @@
 //! after that relabelling lies on a zone boundary and is skipped (the Python checker
 //! reports it as missing; it arises where a corner's wedge is narrower than the grid).
 
+mod curve;
 mod field;
 mod generators;
 mod nearest;
@@ -131,7 +132,7 @@ pub const MAX_GRID: usize = 4096;
 const MAX_SAMPLES: usize = 1 << 22;
 
 /// Checks `diagram` against `scene`. Refuses scenes the checker cannot evaluate: site
-/// kinds without a distance field here yet (Béziers, B-splines, algebraic curves), and
+/// kinds without a distance field here yet (Béziers, B-splines), and
 /// ellipses in `medial_axis` mode.
 pub fn verify(
     scene: &Scene,

@@ -1,0 +1,264 @@
+//! An `algebraic` site: the Euclidean distance to the curve `{f = 0} ∩ clip` of a
+//! bivariate polynomial (SCENE_FORMAT.md), as a distance field of the subdivision
+//! engine (after Shou, Yuan, Miao, Wang 2011, whose quadtree of curve pixels this
+//! replaces by a certified enclosure with witnesses and Newton-refined feet).
+//!
+//! * **Enclosure** ([`enclosure`]): every point of the curve lies in a leaf of a
+//!   quadtree over the clip box built with Bernstein range exclusion; leaf sides with
+//!   certified sign changes of `f` give *witnesses*, certified points of the curve.
+//! * **Box bounds.** Over a box `B` the distance is at least the least gap from `B` to
+//!   a node that may hold the curve, and at most the least over witnesses `w` of the
+//!   largest distance from `B` to `w`'s bracket. The per-box state is the list of
+//!   enclosure nodes that may hold a nearest point for some point of `B`; children
+//!   inherit it, opening nodes larger than half the box (a dual-tree descent), so the
+//!   enclosure is refined only where the diagram looks at it.
+//! * **Gradient bound.** Where the distance is differentiable its gradient is the unit
+//!   vector from the nearest point to `q`; it lies in the hull of the unit vectors from
+//!   the kept nodes to `B` (and so does the generalized gradient on the curve's ridges).
+//! * **Point values** ([`nearest`]): best-first search and Newton on the foot-point
+//!   system.
+//! * **Special points** ([`special`]): singular points by the 2-D certified solver,
+//!   tangential contacts with the clip box; counted in [`AlgebraicField::stats`].
+
+mod dense;
+mod enclosure;
+mod nearest;
+mod special;
+
+use super::DistanceField;
+use crate::error::Error;
+use crate::geom::{Aabb, Axis, Point};
+use crate::num::interval::{round_down, round_up};
+use crate::num::poly::Poly;
+use crate::num::Interval;
+use dense::Jet;
+use enclosure::{Enclosure, NONE};
+use special::Special;
+
+/// Singular clusters longer than this fraction of the clip box are not isolated
+/// points: the curve is singular along a branch (`f` has a repeated factor).
+const MAX_CLUSTER: f64 = 1e-4;
+
+/// The distance field of an algebraic curve.
+#[derive(Clone, Debug)]
+pub struct AlgebraicField {
+    clip: Aabb,
+    jet: Jet,
+    enclosure: Enclosure,
+    special: Special,
+    leaf_size: f64,
+}
+
+/// The per-box state: the enclosure nodes that may hold a nearest point, with the
+/// bounds they give.
+#[derive(Clone, Debug)]
+pub struct AlgebraicState {
+    nodes: Vec<u32>,
+    lo: f64,
+    hi: f64,
+    gradient: [Interval; 2],
+}
+
+impl AlgebraicField {
+    /// The field of site `site`, the curve `{f = 0} ∩ clip`, with enclosure leaves no
+    /// longer than `resolution`. Refuses a curve with no point in the clip box, one with
+    /// no certified point, and one singular along a whole branch.
+    pub fn new(site: usize, f: &Poly, clip: Aabb, resolution: f64) -> Result<Self, Error> {
+        let jet = Jet::new(f);
+        let leaf_size = resolution.max(1e-12 * clip.longest_side());
+        let mut enclosure = Enclosure::build(f, &jet, &clip, leaf_size);
+        if enclosure.root().is_none() {
+            return Err(Error::site(
+                site,
+                "equation",
+                "the curve has no real point in its clip box (certified by Bernstein bounds)",
+            ));
+        }
+        let special = special::analyse(f, &jet, &clip, &mut enclosure);
+        let unsupported = |message: &str| Error::Unsupported {
+            site,
+            kind: "algebraic".into(),
+            message: message.into(),
+        };
+        if special.largest_cluster > MAX_CLUSTER * clip.longest_side() {
+            return Err(unsupported(
+                "the curve is singular along a whole branch (f = ∂f/∂x = ∂f/∂y = 0 on a curve: a repeated factor?)",
+            ));
+        }
+        if enclosure.witnesses.is_empty() {
+            return Err(unsupported(
+                "no point of the curve could be certified in its clip box (it may only touch the box, or lie within rounding of it)",
+            ));
+        }
+        Ok(AlgebraicField {
+            clip,
+            jet,
+            enclosure,
+            special,
+            leaf_size,
+        })
+    }
+
+    /// Figures of the enclosure and the special points, for a diagram's `stats`.
+    pub fn stats(&self) -> serde_json::Value {
+        serde_json::json!({
+            "enclosure_leaves": self.enclosure.leaves.len(),
+            "witnesses": self.enclosure.witnesses.len(),
+            "leaf_size": self.leaf_size,
+            "singular_points": self.special.singular_points,
+            "singular_clusters": self.special.singular_clusters,
+            "clip_contacts": self.special.clip_contacts,
+        })
+    }
+
+    /// The nodes of `from` (and their descendants) that may hold a nearest point for a
+    /// point of `b`, and the bounds they give.
+    fn refine(&self, b: &Aabb, from: &[u32]) -> AlgebraicState {
+        let e = &self.enclosure;
+        let mut hi = f64::INFINITY;
+        for &n in from {
+            hi = hi.min(self.witness_upper(b, n));
+        }
+        let open = 0.5 * diagonal(b);
+        let mut work = from.to_vec();
+        let mut kept: Vec<(u32, f64)> = Vec::new();
+        while let Some(n) = work.pop() {
+            let node = &e.nodes[n as usize];
+            let lo = gap(b, &node.bbox);
+            if lo > hi {
+                continue;
+            }
+            if node.leaf == NONE && diagonal(&node.bbox) > open {
+                // nearer child last, so that it is opened next and tightens `hi` early
+                let mut kids = [(f64::INFINITY, NONE); 2];
+                for (k, &c) in e.children(n).iter().enumerate().take(2) {
+                    kids[k] = (gap(b, &e.nodes[c as usize].bbox), c);
+                }
+                if kids[0].0 < kids[1].0 {
+                    kids.swap(0, 1);
+                }
+                for (_, c) in kids.into_iter().filter(|k| k.1 != NONE) {
+                    hi = hi.min(self.witness_upper(b, c));
+                    work.push(c);
+                }
+            } else {
+                kept.push((n, lo));
+            }
+        }
+        kept.retain(|k| k.1 <= hi);
+        let lo = kept.iter().map(|k| k.1).fold(f64::INFINITY, f64::min);
+        let unit = Interval::new(-1.0, 1.0);
+        let mut gradient: Option<[Interval; 2]> = None;
+        for &(n, _) in &kept {
+            let g = unit_bound(b, &e.nodes[n as usize].bbox);
+            gradient = Some(match gradient {
+                None => g,
+                Some(h) => [h[0].hull(g[0]), h[1].hull(g[1])],
+            });
+        }
+        AlgebraicState {
+            nodes: kept.into_iter().map(|k| k.0).collect(),
+            lo: round_down(lo.min(hi)).max(0.0),
+            hi,
+            gradient: gradient.unwrap_or([unit, unit]),
+        }
+    }
+
+    /// The largest distance from `b` to node `n`'s witness bracket (∞ without one).
+    fn witness_upper(&self, b: &Aabb, n: u32) -> f64 {
+        let w = self.enclosure.nodes[n as usize].witness;
+        if w == NONE {
+            return f64::INFINITY;
+        }
+        let w = &self.enclosure.witnesses[w as usize];
+        let far = b
+            .corners()
+            .iter()
+            .map(|c| c.dist(w.a).max(c.dist(w.b)))
+            .fold(0.0, f64::max);
+        round_up(far * (1.0 + 4.0 * f64::EPSILON))
+    }
+
+    fn nearest(&self, q: Point) -> Option<nearest::Nearest> {
+        nearest::nearest(
+            &self.enclosure,
+            &self.jet,
+            &self.clip,
+            q,
+            4.0 * self.leaf_size,
+        )
+    }
+}
+
+/// The length of a box's diagonal.
+fn diagonal(b: &Aabb) -> f64 {
+    b.width().hypot(b.height())
+}
+
+/// The least distance between two boxes, rounded down.
+fn gap(a: &Aabb, b: &Aabb) -> f64 {
+    let dx = (a.min.x - b.max.x).max(b.min.x - a.max.x).max(0.0);
+    let dy = (a.min.y - b.max.y).max(b.min.y - a.max.y).max(0.0);
+    if dx == 0.0 && dy == 0.0 {
+        return 0.0;
+    }
+    round_down((dx * dx + dy * dy).sqrt() * (1.0 - 4.0 * f64::EPSILON)).max(0.0)
+}
+
+/// The unit vectors `(q − p)/|q − p|`, `q ∈ b`, `p ∈ n`; the unit square where the boxes
+/// meet.
+fn unit_bound(b: &Aabb, n: &Aabb) -> [Interval; 2] {
+    let unit = Interval::new(-1.0, 1.0);
+    let dx = b.x() - n.x();
+    let dy = b.y() - n.y();
+    let r = (dx.sqr() + dy.sqr()).sqrt();
+    if r.lo <= 0.0 {
+        return [unit, unit];
+    }
+    match (dx.div(r), dy.div(r)) {
+        (Some(gx), Some(gy)) => [
+            Interval::new(gx.lo.max(-1.0), gx.hi.min(1.0)),
+            Interval::new(gy.lo.max(-1.0), gy.hi.min(1.0)),
+        ],
+        _ => [unit, unit],
+    }
+}
+
+impl DistanceField for AlgebraicField {
+    type State = AlgebraicState;
+
+    fn state(&self, b: &Aabb) -> AlgebraicState {
+        let root: Vec<u32> = self.enclosure.root().into_iter().collect();
+        self.refine(b, &root)
+    }
+
+    fn split(
+        &self,
+        s: &AlgebraicState,
+        b: &Aabb,
+        axis: Axis,
+        at: f64,
+    ) -> (AlgebraicState, AlgebraicState) {
+        let (l, r) = b.split(axis, at);
+        (self.refine(&l, &s.nodes), self.refine(&r, &s.nodes))
+    }
+
+    fn bound(&self, s: &AlgebraicState, _b: &Aabb) -> Interval {
+        Interval::new(s.lo, s.hi)
+    }
+
+    fn gradient_bound(&self, s: &AlgebraicState, _b: &Aabb) -> Option<[Interval; 2]> {
+        Some(s.gradient)
+    }
+
+    fn value(&self, q: Point) -> f64 {
+        self.nearest(q).map_or(f64::INFINITY, |n| n.dist)
+    }
+
+    fn gradient(&self, q: Point) -> Point {
+        match self.nearest(q) {
+            Some(n) if n.dist > 0.0 => (q - n.foot) * (1.0 / n.dist),
+            _ => Point::new(0.0, 0.0),
+        }
+    }
+}

@@ -1,0 +1,311 @@
+//! Algebraic sites: the distance field against independent references (closed forms and
+//! dense parametric sampling), special points, refusals, and scenes checked by
+//! `gvd verify` and against the same scenes written with circle sites.
+
+use gvd::geom::{Aabb, Point};
+use gvd::internals::{AlgebraicField, DistanceField, Poly};
+use gvd::verify::{verify, VerifyOptions};
+use gvd::{compute, Error, Options, Scene};
+use proptest::prelude::*;
+use std::f64::consts::TAU;
+
+fn field(eq: &str, clip: [f64; 4], res: f64) -> Result<AlgebraicField, Error> {
+    let p = Poly::parse(eq, &['x', 'y']).unwrap();
+    AlgebraicField::new(0, &p, Aabb::from_array(clip), res)
+}
+
+const ASTROID: &str = "(x^2 + y^2 - 1)^3 + 27*x^2*y^2";
+
+/// The distance from `q` to the astroid `(cos³ t, sin³ t)` by dense sampling, polished
+/// by golden-section search around the best sample.
+fn astroid_distance(q: Point) -> f64 {
+    let at = |t: f64| Point::new(t.cos().powi(3), t.sin().powi(3));
+    let n = 20_000;
+    let h = TAU / n as f64;
+    let k = (0..n)
+        .min_by(|&a, &b| {
+            q.dist(at(a as f64 * h))
+                .total_cmp(&q.dist(at(b as f64 * h)))
+        })
+        .unwrap();
+    let (mut lo, mut hi) = ((k as f64 - 1.0) * h, (k as f64 + 1.0) * h);
+    for _ in 0..100 {
+        let (m1, m2) = (lo + 0.382 * (hi - lo), lo + 0.618 * (hi - lo));
+        if q.dist(at(m1)) < q.dist(at(m2)) {
+            hi = m2;
+        } else {
+            lo = m1;
+        }
+    }
+    q.dist(at(0.5 * (lo + hi)))
+}
+
+fn astroid() -> AlgebraicField {
+    field(ASTROID, [-1.5, -1.5, 1.5, 1.5], 1.0 / 256.0).unwrap()
+}
+
+fn circle() -> AlgebraicField {
+    field(
+        "(x - 0.2)^2 + (y + 0.1)^2 - 0.49",
+        [-1.0, -1.0, 1.0, 1.0],
+        1.0 / 512.0,
+    )
+    .unwrap()
+}
+
+fn circle_distance(q: Point) -> f64 {
+    (q.dist(Point::new(0.2, -0.1)) - 0.7).abs()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Box bounds (the state computed from scratch, and after splits) enclose the
+    /// distance at points of the box; the point value is the distance.
+    #[test]
+    fn bounds_enclose_sampled_distances(
+        x in -1.4f64..1.2, y in -1.4f64..1.2, w in 0.001f64..0.3, u in 0.0f64..1.0, v in 0.0f64..1.0
+    ) {
+        for (f, reference) in [
+            (astroid(), astroid_distance as fn(Point) -> f64),
+            (circle(), circle_distance),
+        ] {
+            let b = Aabb::from_array([x, y, x + w, y + w]);
+            let s = f.state(&b);
+            let q = b.at(u, v);
+            let d = reference(q);
+            let r = f.bound(&s, &b);
+            prop_assert!(r.lo <= d + 1e-12 && d <= r.hi + 1e-12, "{r} vs {d} at {q:?}");
+            prop_assert!((f.value(q) - d).abs() < 1e-7, "value {} vs {d} at {q:?}", f.value(q));
+            let (l, _) = f.split(&s, &b, gvd::geom::Axis::X, b.center().x);
+            let lb = Aabb::from_array([x, y, b.center().x, y + w]);
+            let q = lb.at(u, v);
+            let r = f.bound(&l, &lb);
+            let d = reference(q);
+            prop_assert!(r.lo <= d + 1e-12 && d <= r.hi + 1e-12, "split {r} vs {d} at {q:?}");
+        }
+    }
+
+    /// The gradient bound holds the gradient, and the closest-point search agrees with
+    /// the closed form of a circle.
+    #[test]
+    fn gradient_bound_and_closest_point_on_a_circle(
+        x in -0.95f64..0.9, y in -0.95f64..0.9, w in 0.001f64..0.05, u in 0.0f64..1.0, v in 0.0f64..1.0
+    ) {
+        let f = circle();
+        let b = Aabb::from_array([x, y, x + w, y + w]);
+        let q = b.at(u, v);
+        let d = circle_distance(q);
+        prop_assert!((f.value(q) - d).abs() < 1e-12, "{} vs {d}", f.value(q));
+        let g = f.gradient_bound(&f.state(&b), &b).unwrap();
+        let c = q - Point::new(0.2, -0.1);
+        let n = c * (1.0 / c.norm());
+        let expected = if c.norm() > 0.7 { n } else { n * -1.0 };
+        if d > 1e-9 {
+            prop_assert!(g[0].contains(expected.x) && g[1].contains(expected.y), "{g:?} vs {expected:?}");
+            let got = f.gradient(q);
+            prop_assert!(got.dist(expected) < 1e-9, "{got:?} vs {expected:?}");
+        }
+    }
+}
+
+#[test]
+fn astroid_cusps_are_singular_clusters_and_their_tips_are_nearest() {
+    let f = astroid();
+    let stats = f.stats();
+    assert!(stats["singular_clusters"].as_u64().unwrap() >= 4, "{stats}");
+    // beyond a cusp the nearest point is the tip itself
+    for q in [
+        Point::new(1.2, 0.0),
+        Point::new(0.0, -1.3),
+        Point::new(-1.05, 0.0),
+    ] {
+        let tip = if q.x != 0.0 {
+            Point::new(q.x.signum(), 0.0)
+        } else {
+            Point::new(0.0, q.y.signum())
+        };
+        assert!(
+            (f.value(q) - q.dist(tip)).abs() < 1e-6,
+            "{} at {q:?}",
+            f.value(q)
+        );
+    }
+    assert!(f.value(Point::new(1.0, 0.0)) < 1e-6);
+}
+
+#[test]
+fn node_self_crossing() {
+    // y² = x²(x + 1): a node at the origin, parametrised by x = t² − 1, y = t(t² − 1)
+    let f = field("y^2 - x^2*(x + 1)", [-1.5, -1.5, 1.5, 1.5], 1.0 / 256.0).unwrap();
+    assert!(
+        f.stats()["singular_points"].as_u64().unwrap() >= 1,
+        "{}",
+        f.stats()
+    );
+    let reference = |q: Point| {
+        (0..400_000)
+            .map(|k| {
+                let t = -1.6 + 3.2 * k as f64 / 400_000.0;
+                Point::new(t * t - 1.0, t * (t * t - 1.0))
+            })
+            .filter(|p| p.x.abs() <= 1.5 && p.y.abs() <= 1.5)
+            .map(|p| q.dist(p))
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert!(f.value(Point::new(0.0, 0.0)) < 1e-12);
+    for q in [
+        Point::new(0.05, 0.0),
+        Point::new(-0.3, 0.1),
+        Point::new(0.2, 0.25),
+    ] {
+        let d = reference(q);
+        assert!(
+            (f.value(q) - d).abs() < 1e-5,
+            "{} vs {d} at {q:?}",
+            f.value(q)
+        );
+    }
+}
+
+#[test]
+fn isolated_point_is_part_of_the_curve() {
+    // the origin is an isolated real point of (x² + y²)((x − 1)² + y² − 1/4)
+    let f = field(
+        "(x^2 + y^2)*((x - 1)^2 + y^2 - 0.25)",
+        [-1.0, -1.0, 2.0, 1.0],
+        1.0 / 256.0,
+    )
+    .unwrap();
+    let q = Point::new(-0.3, 0.0);
+    assert!((f.value(q) - 0.3).abs() < 1e-9, "{}", f.value(q));
+    assert!(f.value(Point::new(1.0, 0.6)) > 0.0999 && f.value(Point::new(1.0, 0.6)) < 0.1001);
+    // a curve that is a single isolated point
+    let g = field("x^2 + y^2", [-1.0, -1.0, 1.0, 1.0], 1.0 / 256.0).unwrap();
+    assert!((g.value(Point::new(0.3, 0.4)) - 0.5).abs() < 1e-9);
+}
+
+#[test]
+fn curve_tangent_to_the_clip_box() {
+    // the unit circle touches all four sides of its clip box from inside
+    let f = field("x^2 + y^2 - 1", [-1.0, -1.0, 1.0, 1.0], 1.0 / 256.0).unwrap();
+    assert_eq!(
+        f.stats()["clip_contacts"].as_u64(),
+        Some(4),
+        "{}",
+        f.stats()
+    );
+    for q in [Point::new(1.0, 0.0), Point::new(0.0, -1.0)] {
+        assert!(f.value(q) < 1e-12, "{} at {q:?}", f.value(q));
+    }
+    assert!((f.value(Point::new(0.9, 0.0)) - 0.1).abs() < 1e-12);
+    // touching the clip box from outside: one point, nothing certified, refused
+    let err = field("x^2 + y^2 - 1", [1.0, -1.0, 2.0, 1.0], 1.0 / 256.0).unwrap_err();
+    assert!(matches!(err, Error::Unsupported { site: 0, .. }), "{err}");
+}
+
+#[test]
+fn refusals_name_the_site() {
+    let err = field("x^2 + y^2 + 1", [-1.0, -1.0, 1.0, 1.0], 0.01).unwrap_err();
+    assert!(
+        matches!(&err, Error::Site { site: 0, field, .. } if field == "equation"),
+        "{err}"
+    );
+    let err = field("(x^2 + y^2 - 0.25)^2", [-1.0, -1.0, 1.0, 1.0], 0.01).unwrap_err();
+    assert!(matches!(err, Error::Unsupported { site: 0, .. }), "{err}");
+}
+
+fn scene(name: &str) -> Scene {
+    let path = format!(
+        "{}/tests/data/algebraic/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn check(name: &str) -> gvd::VoronoiComplex {
+    let s = scene(name);
+    let d = compute(&s, &Options::default()).unwrap();
+    assert!(d.stats.contains_key("uncertified_boxes"));
+    let report = verify(&s, &d, &VerifyOptions::default()).unwrap();
+    assert!(
+        report.passed,
+        "{name}: {}\n{:?}",
+        report.summary_line(),
+        report.problems
+    );
+    d
+}
+
+#[test]
+fn paper_example_1_line_and_parabola() {
+    let d = check("shou-ex1-line-parabola");
+    assert_eq!(d.edges.len(), 1);
+}
+
+#[test]
+fn paper_example_2_astroid_and_circle() {
+    let d = check("shou-ex2-astroid-circle");
+    // the bisector runs between the astroid's arms and the circle, through the cusps
+    for cusp in [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)] {
+        let c = Point::new(cusp.0, cusp.1);
+        let near = d
+            .edges
+            .iter()
+            .flat_map(|e| &e.points)
+            .any(|p| p.dist(c) < 0.02);
+        assert!(near, "no edge reaches the cusp {c:?}");
+    }
+}
+
+#[test]
+fn paper_example_3_agrees_with_circle_sites_outside_the_discs() {
+    let d = check("shou-ex3-three-circles");
+    let curves = scene("shou-ex3-three-circles");
+    let centres = [(1.0, 0.0), (-1.0, 0.0), (0.0, -1.7320508075688772)];
+    let as_circles = Scene::new(
+        curves.domain(),
+        curves.epsilon(),
+        curves.mode(),
+        centres
+            .iter()
+            .map(|c| gvd::Site::circle([c.0, c.1], 1.0))
+            .collect(),
+    )
+    .unwrap();
+    let e = compute(&as_circles, &Options::default()).unwrap();
+    let outside = |p: Point| centres.iter().all(|c| p.dist(Point::new(c.0, c.1)) > 1.0);
+    let vs: Vec<_> = d.vertices.iter().filter(|v| outside(v.at)).collect();
+    let ws: Vec<_> = e.vertices.iter().filter(|v| outside(v.at)).collect();
+    assert_eq!(vs.len(), ws.len());
+    for v in vs {
+        let w = ws
+            .iter()
+            .min_by(|a, b| a.at.dist(v.at).total_cmp(&b.at.dist(v.at)))
+            .unwrap();
+        assert!(w.at.dist(v.at) <= as_circles.epsilon(), "{v:?} vs {w:?}");
+        let (mut a, mut b) = (v.sites.to_vec(), w.sites.to_vec());
+        a.sort();
+        b.sort();
+        assert_eq!(a, b);
+    }
+}
+
+#[test]
+fn mixed_with_points_and_circles() {
+    let d = check("mixed-astroid-points-circles");
+    assert!(!d.vertices.is_empty());
+}
+
+#[test]
+fn verify_rejects_a_wrong_diagram() {
+    let s = scene("shou-ex2-astroid-circle");
+    let mut d = compute(&s, &Options::default()).unwrap();
+    for e in &mut d.edges {
+        for p in &mut e.points {
+            *p = *p * 0.97;
+        }
+    }
+    let report = verify(&s, &d, &VerifyOptions::default()).unwrap();
+    assert!(!report.passed, "{}", report.summary_line());
+}

@@ -76,8 +76,7 @@ pub struct Edge {
     pub bisector: Vec<BisectorPiece>,
 }
 
-/// One piece of an edge's bisector in Held's offset-parameter form (the OpenVoronoi
-/// wiki page in `../shared/papers/`): with `t` the clearance (the distance to both
+/// One piece of an edge's bisector in Held's offset-parameter form (Hel01): with `t` the clearance (the distance to both
 /// generators),
 ///
 /// x(t) = x1 − x2 − x3·t + sign · x4 · √((x5 + x6·t)² − (x7 + x8·t)²),

@@ -1,5 +1,5 @@
 //! The topology-oriented incremental Voronoi diagram (Sugihara–Iri 1992, Imai 1996,
-//! Held 2001; the OpenVoronoi wiki page in `../shared/papers/`), for Euclidean points.
+//! Held 2001, keys SI92 and Hel01 in `docs/REFERENCES.md`), for Euclidean points.
 //!
 //! The diagram starts as G(3), the diagram of three far generators enclosing the sites
 //! and the domain, and takes one site at a time (steps B1, B2, A2–A4 of the wiki page,

@@ -346,7 +346,16 @@ fn read_text(path: &Path) -> Result<String> {
     std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
 }
 
+/// Reads a scene, warning on stderr about fields the format does not know.
 fn read_scene(path: &Path) -> Result<Scene> {
     let text = read_text(path)?;
-    Scene::from_json(&text).with_context(|| format!("{}", path.display()))
+    let read = || -> Result<Scene, gvd::Error> {
+        let value: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| gvd::Error::Json(e.to_string()))?;
+        for w in Scene::unknown_fields(&value) {
+            eprintln!("gvd: warning: {}: {w}", path.display());
+        }
+        Scene::from_value(&value)
+    };
+    read().with_context(|| format!("{}", path.display()))
 }

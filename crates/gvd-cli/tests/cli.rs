@@ -243,3 +243,35 @@ fn bisectors_flag_adds_offset_forms() {
         assert_eq!(with > 0, expected, "{flag:?}: {with} edges with a bisector");
     }
 }
+
+#[test]
+fn unknown_fields_are_warned_about_and_ignored() {
+    let scene = scratch("unknown-fields-scene.json");
+    let written = scratch("unknown-fields-out.json");
+    std::fs::write(
+        &scene,
+        r#"{"domain": [0, 0, 1, 1], "epsilion": 0.01, "source": "test",
+            "sites": [{"kind": "point", "at": [0.2, 0.2], "radius": 1},
+                      {"kind": "point", "at": [0.7, 0.6]}]}"#,
+    )
+    .unwrap();
+    let out = gvd()
+        .arg("compute")
+        .arg(&scene)
+        .arg("--json")
+        .arg(&written)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("unknown field 'epsilion' (ignored; did you mean 'epsilon'?)"),
+        "{err}"
+    );
+    assert!(
+        err.contains("site 0: unknown field 'radius' (ignored)"),
+        "{err}"
+    );
+    assert!(err.contains("unknown field 'source' (ignored)"), "{err}");
+    assert!(written.exists());
+}

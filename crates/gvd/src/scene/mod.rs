@@ -8,6 +8,7 @@
 mod check;
 mod parse;
 mod scale;
+mod unknown;
 mod validate;
 
 use crate::error::Error;

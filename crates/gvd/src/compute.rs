@@ -1,6 +1,6 @@
 //! The library's entry point: a scene in, its Voronoi complex out.
 
-use crate::cells;
+use crate::complex::cells;
 use crate::complex::VoronoiComplex;
 use crate::error::Error;
 use crate::geom::Aabb;
@@ -111,9 +111,9 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
                 Ok(complex)
             });
         }
-        (Engine::Auto | Engine::Incremental, None) if incremental::linear::supports(scene) => {
+        (Engine::Auto | Engine::Incremental, None) if incremental::supports(scene) => {
             return timed_incremental(|| {
-                incremental::linear::linear_voronoi(scene, options.incremental.bisectors)
+                incremental::scene_voronoi(scene, options.incremental.bisectors)
             });
         }
         (Engine::Incremental, None) => {
@@ -121,7 +121,7 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
                 .sites()
                 .iter()
                 .enumerate()
-                .find(|(_, s)| !incremental::linear::supports_site(&s.kind))
+                .find(|(_, s)| !incremental::supports_site(&s.kind))
                 .map(|(i, s)| (i, s.kind.name().to_string()))
                 .unwrap_or((0, "point".into()));
             return Err(Error::Unsupported {

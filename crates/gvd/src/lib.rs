@@ -32,7 +32,6 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 #![warn(clippy::print_stdout, clippy::print_stderr)]
 
-mod cells;
 pub mod complex;
 mod compute;
 mod error;
@@ -63,7 +62,7 @@ pub use verify::{verify, Report, VerifyOptions};
 /// Engine entry points and numerics for benchmarks and engine-level tests. No
 /// stability promise: use [`compute`] in applications.
 pub mod internals {
-    pub use crate::cells::build_cells;
+    pub use crate::complex::cells::build_cells;
     pub use crate::incremental::{points_voronoi, Face, PointDiagram};
     pub use crate::num::bernstein::{Bernstein1, Bernstein2, Bernstein3};
     pub use crate::num::poly::Poly;

@@ -3,6 +3,7 @@
 
 pub mod arc;
 pub mod bezier;
+pub(crate) mod grid;
 mod nearest;
 pub mod predicates;
 pub mod ring;

@@ -7,7 +7,7 @@
 use crate::complex::VoronoiComplex;
 use crate::geom::bezier::RationalBezier;
 use crate::geom::{Aabb, Point};
-use crate::offset::{Curve, Offset, Primitive};
+use crate::offset::model::{Curve, Offset, Primitive};
 use crate::scene::{Scene, SiteKind};
 use std::fmt::Write;
 

@@ -1,8 +1,9 @@
 //! Joining oriented pieces end to start into curves.
 
 use super::{Curve, Primitive};
-use crate::geom::Point;
-use std::collections::{HashMap, VecDeque};
+use crate::geom::grid::{bounds_of_points, BucketGrid};
+use crate::geom::{Aabb, Point};
+use std::collections::VecDeque;
 
 /// A kept piece of a level curve, oriented with its feature on the left.
 pub(super) struct Piece {
@@ -11,46 +12,35 @@ pub(super) struct Piece {
     pub(super) end: Point,
 }
 
-/// Pieces' end points bucketed in square cells of side `tol`.
-struct Buckets {
+/// Pieces' end points bucketed in the shared grid, in cells at least `tol` wide.
+struct Ends {
+    points: Vec<Point>,
     tol: f64,
-    map: HashMap<(i64, i64), Vec<usize>>,
+    grid: BucketGrid,
 }
 
-impl Buckets {
-    fn new(points: impl Iterator<Item = Point>, tol: f64) -> Buckets {
-        let mut b = Buckets {
-            tol,
-            map: HashMap::new(),
-        };
-        for (k, p) in points.enumerate() {
-            b.map.entry(b.key(p)).or_default().push(k);
-        }
-        b
+impl Ends {
+    fn new(points: Vec<Point>, tol: f64) -> Ends {
+        let extent = bounds_of_points(points.iter().copied());
+        let fit = extent.longest_side() / (2.0 * points.len() as f64).sqrt();
+        let grid = BucketGrid::new(extent, tol.max(fit), 4096, points.len(), |k| {
+            Aabb::new(points[k], points[k])
+        });
+        Ends { points, tol, grid }
     }
 
-    fn key(&self, p: Point) -> (i64, i64) {
-        (
-            (p.x / self.tol).floor() as i64,
-            (p.y / self.tol).floor() as i64,
-        )
-    }
-
-    /// The unused piece whose bucketed point is nearest to `p`, within `tol`.
-    fn nearest(&self, p: Point, at: impl Fn(usize) -> Point, used: &[bool]) -> Option<usize> {
-        let (i, j) = self.key(p);
+    /// The unused piece whose end point is nearest to `p` within `tol` (the first
+    /// piece among equals).
+    fn nearest(&self, p: Point, used: &[bool]) -> Option<usize> {
+        let reach = Point::new(self.tol, self.tol);
         let mut best: Option<(f64, usize)> = None;
-        for di in -1..=1 {
-            for dj in -1..=1 {
-                let key = (i.saturating_add(di), j.saturating_add(dj));
-                for &k in self.map.get(&key).into_iter().flatten() {
-                    let d = at(k).dist(p);
-                    if !used[k] && d <= self.tol && best.is_none_or(|(bd, _)| d < bd) {
-                        best = Some((d, k));
-                    }
+        self.grid
+            .for_each_in(&Aabb::new(p - reach, p + reach), |_, k| {
+                let (d, k) = (self.points[k as usize].dist(p), k as usize);
+                if !used[k] && d <= self.tol && best.is_none_or(|(bd, bk)| (d, k) < (bd, bk)) {
+                    best = Some((d, k));
                 }
-            }
-        }
+            });
         best.map(|(_, k)| k)
     }
 }
@@ -58,8 +48,8 @@ impl Buckets {
 /// Chains pieces whose ends meet within `tol` (an end joins the nearest unused start)
 /// into curves; a curve is closed when its last end meets its first start.
 pub(super) fn chain(pieces: Vec<Piece>, tol: f64) -> Vec<Curve> {
-    let starts = Buckets::new(pieces.iter().map(|p| p.start), tol);
-    let ends = Buckets::new(pieces.iter().map(|p| p.end), tol);
+    let starts = Ends::new(pieces.iter().map(|p| p.start).collect(), tol);
+    let ends = Ends::new(pieces.iter().map(|p| p.end).collect(), tol);
     let mut used = vec![false; pieces.len()];
     let mut curves = Vec::new();
     for seed in 0..pieces.len() {
@@ -71,7 +61,7 @@ pub(super) fn chain(pieces: Vec<Piece>, tol: f64) -> Vec<Curve> {
         let mut closed = false;
         loop {
             let (first, last) = (&pieces[run[0]], &pieces[run[run.len() - 1]]);
-            let next = starts.nearest(last.end, |k| pieces[k].start, &used);
+            let next = starts.nearest(last.end, &used);
             // close unless another piece starts nearer to the last end than the first
             let gap = last.end.dist(first.start);
             let may_close = gap <= tol && (run.len() > 1 || is_long_arc(&first.primitive));
@@ -86,7 +76,7 @@ pub(super) fn chain(pieces: Vec<Piece>, tol: f64) -> Vec<Curve> {
             run.push_back(k);
         }
         if !closed {
-            while let Some(k) = ends.nearest(pieces[run[0]].start, |k| pieces[k].end, &used) {
+            while let Some(k) = ends.nearest(pieces[run[0]].start, &used) {
                 used[k] = true;
                 run.push_front(k);
             }

@@ -4,6 +4,7 @@
 
 use crate::complex::{FeatureKind, Generator};
 use crate::error::Error;
+use crate::geom::grid::{bounds_of_points, BucketGrid};
 use crate::geom::ring::even_odd_contains;
 use crate::geom::{segment_distance, Aabb, Point};
 use crate::scene::{Metric, Scene, SiteKind};
@@ -264,79 +265,31 @@ fn ring_chain(rings: &[Vec<Point>]) -> (Vec<Point>, Vec<(usize, usize)>) {
     (corners, edges)
 }
 
-/// Features bucketed by their bounding boxes in a uniform grid.
-pub(super) struct Grid {
-    bounds: Aabb,
-    cell: f64,
-    nx: usize,
-    ny: usize,
-    buckets: Vec<Vec<usize>>,
-}
+/// Features bucketed by their bounding boxes in the shared grid.
+pub(super) struct Grid(BucketGrid);
 
 impl Grid {
     /// A grid whose cells are at least `reach` wide (queries of radius `reach` then look
     /// at a few cells) and at most 256 along the longer side.
     pub(super) fn new(shapes: &[Shape], reach: f64) -> Grid {
-        let mut bounds = Aabb::new(
-            Point::new(f64::MAX, f64::MAX),
-            Point::new(f64::MIN, f64::MIN),
-        );
-        for s in shapes {
-            let b = s.bounds();
-            bounds.min = Point::new(bounds.min.x.min(b.min.x), bounds.min.y.min(b.min.y));
-            bounds.max = Point::new(bounds.max.x.max(b.max.x), bounds.max.y.max(b.max.y));
-        }
+        let boxes: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
+        let extent = bounds_of_points(boxes.iter().flat_map(|b| [b.min, b.max]));
         let side = if shapes.is_empty() {
             0.0
         } else {
-            bounds.longest_side()
+            extent.longest_side()
         };
         let cell = reach.max(side / 256.0).max(f64::MIN_POSITIVE);
-        let count = |len: f64| ((len / cell).floor() as usize + 1).min(257);
-        let (nx, ny) = if shapes.is_empty() {
-            (0, 0)
-        } else {
-            (count(bounds.width()), count(bounds.height()))
-        };
-        let mut grid = Grid {
-            bounds,
-            cell,
-            nx,
-            ny,
-            buckets: vec![Vec::new(); nx * ny],
-        };
-        for (k, s) in shapes.iter().enumerate() {
-            let b = s.bounds();
-            for j in grid.span(b.min.y, b.max.y, grid.bounds.min.y, ny) {
-                for i in grid.span(b.min.x, b.max.x, grid.bounds.min.x, nx) {
-                    grid.buckets[j * nx + i].push(k);
-                }
-            }
-        }
-        grid
-    }
-
-    /// The cell numbers along one axis that `[lo, hi]` overlaps (empty when outside).
-    fn span(&self, lo: f64, hi: f64, origin: f64, n: usize) -> Range<usize> {
-        if n == 0 || hi < origin || lo > origin + n as f64 * self.cell {
-            return 0..0;
-        }
-        let first = ((lo - origin) / self.cell).floor().max(0.0) as usize;
-        let last = (((hi - origin) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        first.min(n)..last + 1
+        Grid(BucketGrid::new(extent, cell, 257, boxes.len(), |k| {
+            boxes[k]
+        }))
     }
 
     /// Whether `pred` holds for some feature whose bounding box may meet the disk of
     /// radius `r` around `q` (features may be visited more than once).
     pub(super) fn any_near(&self, q: Point, r: f64, mut pred: impl FnMut(usize) -> bool) -> bool {
-        let (o, n) = (self.bounds.min, (self.nx, self.ny));
-        for j in self.span(q.y - r, q.y + r, o.y, n.1) {
-            for i in self.span(q.x - r, q.x + r, o.x, n.0) {
-                if self.buckets[j * self.nx + i].iter().any(|&k| pred(k)) {
-                    return true;
-                }
-            }
-        }
-        false
+        let reach = Point::new(r, r);
+        self.0
+            .any_in(&Aabb::new(q - reach, q + reach), |k| pred(k as usize))
     }
 }

@@ -318,7 +318,7 @@ pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Result<Output, Er
     if !fields.is_empty() {
         let locator = locate::Locator::new(fields, &leaves, params.domain);
         complex.cells =
-            crate::cells::build_cells(&complex, &params.domain, &|q| locator.nearest(q));
+            crate::complex::cells::build_cells(&complex, &params.domain, &|q| locator.nearest(q));
     }
 
     let spanning = leaves.iter().filter(|l| l.sites.len() >= 2).count();

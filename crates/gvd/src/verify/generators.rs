@@ -24,6 +24,7 @@ use super::field::Field;
 use super::region::{medial_region, Region};
 use crate::complex::{FeatureKind, Generator};
 use crate::error::Error;
+use crate::geom::grid::SparseGrid;
 use crate::geom::Point;
 use crate::scene::{Mode, Scene, SiteKind};
 use std::collections::HashMap;
@@ -91,28 +92,22 @@ pub(super) struct Gens {
 /// an ulp).
 pub(super) struct SharedPoints {
     radius: f64,
-    /// owners bucketed by cells of size `radius`
-    cells: HashMap<(i64, i64), Vec<Owner>>,
+    /// owners at their points
+    owners: SparseGrid<(usize, usize)>,
 }
 
 /// A site's point, the generator naming it, and the site.
-type Owner = (Point, usize, usize);
-
 impl SharedPoints {
-    fn cell(&self, p: Point) -> (i64, i64) {
-        let f = |v: f64| (v / self.radius).floor() as i64;
-        (f(p.x), f(p.y))
+    fn new(radius: f64) -> SharedPoints {
+        SharedPoints {
+            radius,
+            owners: SparseGrid::new(radius),
+        }
     }
 
     /// The owners `(generator, site)` within `radius` of `p`.
     fn near(&self, p: Point) -> impl Iterator<Item = (usize, usize)> + '_ {
-        let (i, j) = self.cell(p);
-        (i - 1..=i + 1)
-            .flat_map(move |a| (j - 1..=j + 1).map(move |b| (a, b)))
-            .filter_map(|c| self.cells.get(&c))
-            .flatten()
-            .filter(move |e| e.0.dist(p) <= self.radius)
-            .map(|e| (e.1, e.2))
+        self.owners.near(p).map(|e| e.1)
     }
 
     /// The owners of the shared point at `p` (none if no shared point is there).
@@ -173,10 +168,7 @@ impl Gens {
             featured,
             masks: Vec::new(),
             region: None,
-            shared: SharedPoints {
-                radius: 1e-9 * scene.domain().longest_side(),
-                cells: HashMap::new(),
-            },
+            shared: SharedPoints::new(1e-9 * scene.domain().longest_side()),
             lookup: HashMap::new(),
         };
         for (i, site) in scene.sites().iter().enumerate() {
@@ -248,10 +240,7 @@ impl Gens {
 
     /// Fills [`Gens::shared`] with the points of more than one site.
     fn find_shared_points(&mut self, scene: &Scene) {
-        let mut all = SharedPoints {
-            radius: self.shared.radius,
-            cells: HashMap::new(),
-        };
+        let mut all = SharedPoints::new(self.shared.radius);
         for (i, site) in scene.sites().iter().enumerate() {
             let whole = self.lookup.get(&(i, 0, 0)).copied();
             for (k, p) in site_points(&site.kind).into_iter().enumerate() {
@@ -259,21 +248,14 @@ impl Gens {
                     .lookup
                     .get(&(i, kind_key(Some(FeatureKind::Corner)), k));
                 if let Some(g) = whole.or(corner.copied()) {
-                    let cell = all.cell(p);
-                    all.cells.entry(cell).or_default().push((p, g, i));
+                    all.owners.insert(p, (g, i));
                 }
             }
         }
-        let shared: Vec<Owner> = all
-            .cells
-            .values()
-            .flatten()
-            .filter(|e| all.near(e.0).any(|(_, site)| site != e.2))
-            .copied()
-            .collect();
-        for e in shared {
-            let cell = self.shared.cell(e.0);
-            self.shared.cells.entry(cell).or_default().push(e);
+        for &(p, (g, site)) in all.owners.items() {
+            if all.near(p).any(|(_, other)| other != site) {
+                self.shared.owners.insert(p, (g, site));
+            }
         }
     }
 

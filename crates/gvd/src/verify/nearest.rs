@@ -11,6 +11,7 @@
 
 use super::field::Bound;
 use super::generators::{Gens, Mask};
+use crate::geom::grid::BucketGrid;
 use crate::geom::{Aabb, Point};
 
 /// The nearest-site index of a scene.
@@ -20,13 +21,9 @@ pub(super) struct Nearest<'a> {
     always: Vec<usize>,
     /// `1e-12` of the scene's size: feet closer than this to an end are at the end
     tiny: f64,
-    origin: Point,
-    cell: f64,
-    nx: usize,
-    ny: usize,
-    /// bucket `b` holds `ids[start[b]..start[b + 1]]`
-    start: Vec<usize>,
-    ids: Vec<usize>,
+    /// the anchored generators, by anchor (item `k` is `anchored[k]`)
+    grid: BucketGrid,
+    anchored: Vec<usize>,
     /// `G(k·c)` for `k = 0..=max(nx, ny)`
     ring_bound: Vec<f64>,
 }
@@ -57,27 +54,10 @@ impl<'a> Nearest<'a> {
         let cell = (w * h / anchored.len().max(1) as f64)
             .sqrt()
             .max(w.max(h) / 2048.0);
-        let nx = ((w / cell).ceil() as usize).clamp(1, 2048);
-        let ny = ((h / cell).ceil() as usize).clamp(1, 2048);
-        let mut count = vec![0usize; nx * ny + 1];
-        let key = |p: Point| {
-            let i = (((p.x - lo.x) / cell) as usize).min(nx - 1);
-            let j = (((p.y - lo.y) / cell) as usize).min(ny - 1);
-            j * nx + i
-        };
-        for &(_, p, _) in &anchored {
-            count[key(p) + 1] += 1;
-        }
-        for b in 0..nx * ny {
-            count[b + 1] += count[b];
-        }
-        let start = count.clone();
-        let mut ids = vec![0; anchored.len()];
-        for &(i, p, _) in &anchored {
-            let b = key(p);
-            ids[count[b]] = i;
-            count[b] += 1;
-        }
+        let grid = BucketGrid::new(Aabb::new(lo, hi), cell, 2049, anchored.len(), |k| {
+            Aabb::new(anchored[k].1, anchored[k].1)
+        });
+        let (nx, ny) = grid.dims();
         let ring_bound = (0..=nx.max(ny))
             .map(|k| {
                 let r = k as f64 * cell;
@@ -91,12 +71,8 @@ impl<'a> Nearest<'a> {
             gens,
             always,
             tiny: 1e-12 * domain.longest_side(),
-            origin: lo,
-            cell,
-            nx,
-            ny,
-            start,
-            ids,
+            grid,
+            anchored: anchored.iter().map(|&(i, _, _)| i).collect(),
             ring_bound,
         }
     }
@@ -146,34 +122,12 @@ impl<'a> Nearest<'a> {
         for &i in &self.always {
             consider(i, &mut best);
         }
-        let cx = ((q.x - self.origin.x) / self.cell)
-            .floor()
-            .clamp(0.0, (self.nx - 1) as f64) as i64;
-        let cy = ((q.y - self.origin.y) / self.cell)
-            .floor()
-            .clamp(0.0, (self.ny - 1) as f64) as i64;
-        let (nx, ny) = (self.nx as i64, self.ny as i64);
-        for k in 0..=nx.max(ny) {
-            for j in (cy - k).max(0)..=(cy + k).min(ny - 1) {
-                let mut visit = |i: i64| {
-                    let b = (j * nx + i) as usize;
-                    for &s in &self.ids[self.start[b]..self.start[b + 1]] {
-                        consider(s, &mut best);
-                    }
-                };
-                if j == cy - k || j == cy + k {
-                    ((cx - k).max(0)..=(cx + k).min(nx - 1)).for_each(&mut visit);
-                } else {
-                    // inner rows: only the two cells of the ring
-                    if cx - k >= 0 {
-                        visit(cx - k);
-                    }
-                    if cx + k < nx {
-                        visit(cx + k);
-                    }
-                }
-            }
-            if self.ring_bound[k as usize] >= best.value {
+        let c = self.grid.cell_of(q);
+        let (nx, ny) = self.grid.dims();
+        for ring in 0..=nx.max(ny) {
+            self.grid
+                .for_each_in_ring(c, ring, |k| consider(self.anchored[k as usize], &mut best));
+            if self.ring_bound[ring] >= best.value {
                 break;
             }
         }

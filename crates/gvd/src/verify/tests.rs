@@ -1,3 +1,5 @@
+use super::report::fmt_g3;
+use crate::geom::Aabb;
 use super::*;
 use crate::complex::{smallvec, Edge, Vertex};
 use crate::scene::{Equation, Metric, Site, SiteKind};

@@ -1,8 +1,9 @@
 //! Exact detection of segments that cross, overlap or touch another one's interior,
 //! and of points inside a segment, with a uniform grid over the segments' boxes.
 
+use crate::geom::grid::{bounds_of_points, BucketGrid};
 use crate::geom::predicates::orient2d as orient;
-use crate::geom::Point;
+use crate::geom::{Aabb, Point};
 
 /// Two generators that the segment engine cannot take together.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,61 +76,23 @@ pub(crate) fn find_conflict(
     if segments.is_empty() {
         return None;
     }
-    let (mut lo, mut hi) = (
-        points[segments[0][0] as usize],
-        points[segments[0][0] as usize],
-    );
-    let mut total = 0.0;
-    for &[a, b] in segments {
-        for p in [points[a as usize], points[b as usize]] {
-            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-        }
-        total += points[a as usize].dist(points[b as usize]);
-    }
+    let ends = |k: usize| segments[k].map(|e| points[e as usize]);
+    let extent = bounds_of_points(segments.iter().flatten().map(|&e| points[e as usize]));
+    let total: f64 = (0..segments.len())
+        .map(|k| ends(k)[0].dist(ends(k)[1]))
+        .sum();
     // Cells about as long as the average segment, at most ~4 per segment.
     let n = segments.len() as f64;
-    let ext = (hi.x - lo.x).max(hi.y - lo.y).max(f64::MIN_POSITIVE);
+    let ext = extent.longest_side().max(f64::MIN_POSITIVE);
     let side = (total / n).max(ext / (2.0 * n).sqrt()).max(ext / 4096.0);
-    let (nx, ny) = (
-        ((hi.x - lo.x) / side).floor() as usize + 1,
-        ((hi.y - lo.y) / side).floor() as usize + 1,
-    );
-    let cell = |p: Point| {
-        let cx = (((p.x - lo.x) / side).floor().max(0.0) as usize).min(nx - 1);
-        let cy = (((p.y - lo.y) / side).floor().max(0.0) as usize).min(ny - 1);
-        (cx, cy)
-    };
-    // Calls `f` with each cell that segment `k`'s box meets.
-    let for_cells = |k: usize, f: &mut dyn FnMut(usize)| {
-        let [a, b] = segments[k];
-        let (c0, c1) = (cell(points[a as usize]), cell(points[b as usize]));
-        for cy in c0.1.min(c1.1)..=c0.1.max(c1.1) {
-            for cx in c0.0.min(c1.0)..=c0.0.max(c1.0) {
-                f(cy * nx + cx);
-            }
-        }
-    };
-    // The segments over each cell, grouped by cell in one list (a counting sort):
-    // cell `c`'s are `list[start[c]..start[c + 1]]`.
-    let mut start = vec![0usize; nx * ny + 1];
-    for k in 0..segments.len() {
-        for_cells(k, &mut |c| start[c + 1] += 1);
-    }
-    for c in 0..nx * ny {
-        start[c + 1] += start[c];
-    }
-    let mut fill = start.clone();
-    let mut list = vec![0u32; start[nx * ny]];
-    for k in 0..segments.len() {
-        for_cells(k, &mut |c| {
-            list[fill[c]] = k as u32;
-            fill[c] += 1;
-        });
-    }
-    let cells = |c: usize| &list[start[c]..start[c + 1]];
-    for c in 0..nx * ny {
-        let list = cells(c);
+    let grid = BucketGrid::new(extent, side, usize::MAX, segments.len(), |k| {
+        let [pa, pb] = ends(k);
+        Aabb::new(
+            Point::new(pa.x.min(pb.x), pa.y.min(pb.y)),
+            Point::new(pa.x.max(pb.x), pa.y.max(pb.y)),
+        )
+    });
+    for list in grid.buckets() {
         for (x, &i) in list.iter().enumerate() {
             for &j in &list[x + 1..] {
                 if let Some(c) = segment_pair(points, segments, i as usize, j as usize) {
@@ -140,11 +103,10 @@ pub(crate) fn find_conflict(
     }
     for &p in lonely {
         let q = points[p as usize];
-        if q.x < lo.x || q.y < lo.y || q.x > hi.x || q.y > hi.y {
+        if q.x < extent.min.x || q.y < extent.min.y || q.x > extent.max.x || q.y > extent.max.y {
             continue;
         }
-        let (cx, cy) = cell(q);
-        for &i in cells(cy * nx + cx) {
+        for &i in grid.bucket(grid.cell_of(q)) {
             let [a, b] = segments[i as usize];
             let (pa, pb) = (points[a as usize], points[b as usize]);
             if p != a && p != b && orient(pa, pb, q) == 0.0 && strictly_between(pa, pb, q) {

@@ -1,7 +1,7 @@
 //! Cells from edges: the faces of the planar subdivision that a complex's edge
 //! polylines and the domain boundary form, each labelled with the site it belongs to.
 
-use crate::complex::{Cell, VoronoiComplex};
+use super::{Cell, VoronoiComplex};
 use crate::geom::ring::{even_odd_contains, signed_area};
 use crate::geom::{Aabb, Point};
 use std::cmp::Ordering;

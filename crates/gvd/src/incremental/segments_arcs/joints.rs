@@ -16,7 +16,7 @@
 //! the edge `F₁/F₂`: the side through `P`'s vertex is relabelled, the other side is
 //! dropped, and the tip edges are contracted.
 
-use super::segments::{ArcSpec, Gen, RawEdge, RawVertex};
+use super::{ArcSpec, Gen, RawEdge, RawVertex};
 use crate::geom::Point;
 use rustc_hash::FxHashMap;
 
@@ -28,7 +28,7 @@ const TANGENT_TOL: f64 = 1e-9;
 /// A tangent joint: its two features, where it is, and the unit normal there (the
 /// direction of the edge between the features).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Joint {
+pub(crate) struct Joint {
     features: [Gen; 2],
     at: Point,
     normal: Point,
@@ -36,7 +36,7 @@ pub(super) struct Joint {
 
 impl Joint {
     /// The foot of `q` on the joint's normal.
-    pub(super) fn onto(&self, q: Point) -> Point {
+    pub(crate) fn onto(&self, q: Point) -> Point {
         self.at + self.normal * (q - self.at).dot(self.normal)
     }
 }
@@ -44,7 +44,7 @@ impl Joint {
 /// The tangent joints: each point generator that ends exactly two features whose
 /// unit directions away from it `a₁`, `a₂` satisfy `|a₁ + a₂| ≤ TANGENT_TOL`, with
 /// those two features.
-pub(super) fn tangent_joints(
+pub(crate) fn tangent_joints(
     points: &[Point],
     segments: &[[u32; 2]],
     arcs: &[ArcSpec],
@@ -105,7 +105,7 @@ pub(super) fn tangent_joints(
 /// edges `P/X` are removed. Returns the tips' vertex pairs, to be merged. A joint
 /// without a vertex at `P` on either side, or with a tip edge longer than `tip_tol`
 /// (by `length`), is left as it is.
-pub(super) fn collapse(
+pub(crate) fn collapse(
     joints: &FxHashMap<u32, Joint>,
     tip_tol: f64,
     vertices: &mut [RawVertex],

@@ -19,18 +19,20 @@
 //!   domain.
 
 mod assembly;
+mod phases;
 
-use super::offset_form::{self, OffsetGen};
-use super::phases::Phases;
-use super::segments::{
+use super::bisector_form::{self, OffsetGen};
+use super::segments_arcs::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
 use crate::geom::arc::partial_sweep;
+use crate::geom::grid::SparseGrid;
 use crate::geom::Point;
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
 use assembly::{assemble, Stretch};
+use phases::Phases;
 use rustc_hash::FxHashMap;
 
 /// Whether every site is a Euclidean point, a segment, an arc short of a full circle, a
@@ -194,7 +196,7 @@ impl Generators {
         for (i, mut arc) in arc_sites {
             arc.ends = [0, 1].map(|k| {
                 let end = arc.end_point(k);
-                match snap.find(&g.points, end) {
+                match snap.find(end) {
                     Some(id) => {
                         g.share(id, (i, Some(k)));
                         id
@@ -336,9 +338,9 @@ impl Generators {
             // at that end: the bisector of the end and either feature.
             let joint = || {
                 let end = self.common_end(st.gens[0], st.gens[1])?;
-                offset_form::pieces(OffsetGen::point(self.points[end as usize]), a, pts, tol)
+                bisector_form::pieces(OffsetGen::point(self.points[end as usize]), a, pts, tol)
             };
-            match offset_form::pieces(a, b, pts, tol).or_else(joint) {
+            match bisector_form::pieces(a, b, pts, tol).or_else(joint) {
                 Some(p) => out.extend(p),
                 None => return Vec::new(),
             }
@@ -421,18 +423,12 @@ fn owner_label((site, corner): (usize, Option<usize>), mode: Mode) -> Generator 
     }
 }
 
-/// Points within `tol` of each other, by a hash grid of cell `tol`.
-struct Snap {
-    tol: f64,
-    cells: FxHashMap<(i64, i64), Vec<u32>>,
-}
+/// Points within `tol` of each other, by the shared sparse grid of cell `tol`.
+struct Snap(SparseGrid<u32>);
 
 impl Snap {
     fn new(tol: f64) -> Snap {
-        Snap {
-            tol,
-            cells: FxHashMap::default(),
-        }
+        Snap(SparseGrid::new(tol))
     }
 
     fn insert_all(&mut self, points: &[Point]) {
@@ -441,30 +437,17 @@ impl Snap {
         }
     }
 
-    fn cell(&self, p: Point) -> (i64, i64) {
-        (
-            (p.x / self.tol).floor() as i64,
-            (p.y / self.tol).floor() as i64,
-        )
-    }
-
     fn insert(&mut self, p: Point, id: u32) {
-        let key = self.cell(p);
-        self.cells.entry(key).or_default().push(id);
+        self.0.insert(p, id);
     }
 
-    /// The nearest point within `tol` of `p`.
-    fn find(&self, points: &[Point], p: Point) -> Option<u32> {
-        let (cx, cy) = self.cell(p);
+    /// The nearest point within `tol` of `p` (the first found among equals).
+    fn find(&self, p: Point) -> Option<u32> {
         let mut best: Option<(f64, u32)> = None;
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for &id in self.cells.get(&(cx + dx, cy + dy)).into_iter().flatten() {
-                    let d = points[id as usize].dist(p);
-                    if d <= self.tol && best.is_none_or(|(b, _)| d < b) {
-                        best = Some((d, id));
-                    }
-                }
+        for &(q, id) in self.0.near(p) {
+            let d = q.dist(p);
+            if best.is_none_or(|(b, _)| d < b) {
+                best = Some((d, id));
             }
         }
         best.map(|(_, id)| id)
@@ -523,9 +506,9 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
 /// The diagram of a scene of Euclidean points, segments, arcs, polylines and polygons;
 /// with `bisectors`, every edge also carries its exact bisector in offset-parameter
 /// form ([`Edge::bisector`]).
-pub fn linear_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, Error> {
+pub fn scene_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, Error> {
     if let Some(s) = scene.unit_scale() {
-        let mut c = linear_voronoi(&scene.scaled(s), bisectors)?;
+        let mut c = scene_voronoi(&scene.scaled(s), bisectors)?;
         c.scale(1.0 / s);
         return Ok(c);
     }

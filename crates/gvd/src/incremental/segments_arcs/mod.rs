@@ -20,14 +20,15 @@ mod crossings;
 mod geometry;
 mod graph;
 mod insert;
+pub(crate) mod joints;
+mod new_site;
 mod pieces;
-mod site;
 
 pub(crate) use arc_conflicts::{find_arc_conflict, ArcConflict, ArcSpec};
 pub(crate) use crossings::{find_conflict, Conflict};
 pub(crate) use geometry::Gen;
 
-use super::PointDiagram;
+use super::points::PointDiagram;
 use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range};
 use crate::Error;
@@ -350,7 +351,7 @@ fn insertion_order(lines: &[Line], arcs: &[Arc]) -> Vec<usize> {
             a.c + Point::new(mid.cos(), mid.sin()) * a.r
         }))
         .collect();
-    super::order::brio(&middles)
+    super::points::order::brio(&middles)
         .into_iter()
         .map(|k| k as usize)
         .collect()

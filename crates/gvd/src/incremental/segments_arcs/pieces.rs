@@ -265,8 +265,8 @@ fn quadratic_roots([c0, c1, c2]: [f64; 3]) -> ([f64; 2], usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::incremental::segments::geometry::testing::{linear_bisector, rng};
-    use crate::incremental::segments::geometry::Shape;
+    use crate::incremental::segments_arcs::geometry::testing::{linear_bisector, rng};
+    use crate::incremental::segments_arcs::geometry::Shape;
 
     #[test]
     fn roots_of_quadratics() {

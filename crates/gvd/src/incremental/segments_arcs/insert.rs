@@ -26,7 +26,7 @@
 
 use super::geometry::{ray_exit, Arc, Bisector, Gen, Line, Shape};
 use super::graph::{Graph, GHOST, NONE};
-use super::site::NewSite;
+use super::new_site::NewSite;
 use crate::geom::Point;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -574,7 +574,7 @@ fn tree_test(g: &Graph, v: u32, sc: &Scratch) -> TreeTest {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::incremental::segments::geometry::testing::{linear_bisector, rng};
+    use crate::incremental::segments_arcs::geometry::testing::{linear_bisector, rng};
 
     /// A2's closed form (the start of the first unclaimed piece, a quadratic's root)
     /// against bisection between the middles of the last claimed and the first

@@ -5,7 +5,8 @@
 //! tolerance of `1e-12` of the scene's size: an intersection that close to a shared
 //! endpoint counts as that endpoint.
 
-use crate::geom::Point;
+use crate::geom::grid::{bounds_of_points, BucketGrid};
+use crate::geom::{Aabb, Point};
 
 /// A circular arc: centre, radius, start angle and counter-clockwise span in `(0, 2π)`,
 /// and its two end points' generators.
@@ -115,16 +116,11 @@ pub(crate) fn find_arc_conflict(
     first.map(|(_, c)| c)
 }
 
-/// A uniform grid over the arcs' boxes (their circles' boxes, padded by the
-/// tolerance), with cells about the size of an arc's box.
+/// The arcs' boxes (their circles' boxes, padded by the tolerance) in the shared grid,
+/// with cells about the size of an arc's box.
 struct ArcGrid {
     boxes: Vec<(Point, Point)>,
-    lo: Point,
-    side: f64,
-    nx: usize,
-    ny: usize,
-    /// The arcs whose boxes meet each cell, row by row.
-    cells: Vec<Vec<u32>>,
+    grid: BucketGrid,
 }
 
 impl ArcGrid {
@@ -136,65 +132,28 @@ impl ArcGrid {
                 (a.c - r, a.c + r)
             })
             .collect();
-        let (mut lo, mut hi) = boxes[0];
-        let mut size = 0.0;
-        for &(l, h) in &boxes {
-            lo = Point::new(lo.x.min(l.x), lo.y.min(l.y));
-            hi = Point::new(hi.x.max(h.x), hi.y.max(h.y));
-            size += h.x - l.x;
-        }
+        let extent = bounds_of_points(boxes.iter().flat_map(|&(l, h)| [l, h]));
+        let size: f64 = boxes.iter().map(|&(l, h)| h.x - l.x).sum();
         let n = arcs.len() as f64;
-        let ext = (hi.x - lo.x).max(hi.y - lo.y).max(f64::MIN_POSITIVE);
+        let ext = extent.longest_side().max(f64::MIN_POSITIVE);
         let side = (size / n).max(ext / (2.0 * n).sqrt()).max(ext / 4096.0);
-        let nx = ((hi.x - lo.x) / side).floor() as usize + 1;
-        let ny = ((hi.y - lo.y) / side).floor() as usize + 1;
-        let mut grid = ArcGrid {
-            boxes,
-            lo,
-            side,
-            nx,
-            ny,
-            cells: vec![Vec::new(); nx * ny],
-        };
-        for k in 0..arcs.len() {
-            let ((x0, y0), (x1, y1)) = grid.span(grid.boxes[k].0, grid.boxes[k].1);
-            for cy in y0..=y1 {
-                for cx in x0..=x1 {
-                    grid.cells[cy * grid.nx + cx].push(k as u32);
-                }
-            }
-        }
-        grid
-    }
-
-    fn cell(&self, p: Point) -> (usize, usize) {
-        let at = |v: f64, lo: f64, n: usize| {
-            (((v - lo) / self.side).floor().max(0.0) as usize).min(n - 1)
-        };
-        (at(p.x, self.lo.x, self.nx), at(p.y, self.lo.y, self.ny))
-    }
-
-    /// The range of cells that the box `[lo, hi]` meets (clamped to the grid).
-    fn span(&self, lo: Point, hi: Point) -> ((usize, usize), (usize, usize)) {
-        (self.cell(lo), self.cell(hi))
+        let grid = BucketGrid::new(extent, side, usize::MAX, boxes.len(), |k| {
+            Aabb::new(boxes[k].0, boxes[k].1)
+        });
+        ArcGrid { boxes, grid }
     }
 
     /// Calls `f` once with each arc whose box meets the box `[lo, hi]`: in the cell of
     /// the least corner of the two boxes' overlap.
     fn near(&self, lo: Point, hi: Point, mut f: impl FnMut(usize)) {
-        let ((x0, y0), (x1, y1)) = self.span(lo, hi);
-        for cy in y0..=y1 {
-            for cx in x0..=x1 {
-                for &k in &self.cells[cy * self.nx + cx] {
-                    let (a, b) = self.boxes[k as usize];
-                    let corner = Point::new(lo.x.max(a.x), lo.y.max(a.y));
-                    let overlap = corner.x <= hi.x.min(b.x) && corner.y <= hi.y.min(b.y);
-                    if overlap && self.cell(corner) == (cx, cy) {
-                        f(k as usize);
-                    }
-                }
+        self.grid.for_each_in(&Aabb::new(lo, hi), |cell, k| {
+            let (a, b) = self.boxes[k as usize];
+            let corner = Point::new(lo.x.max(a.x), lo.y.max(a.y));
+            let overlap = corner.x <= hi.x.min(b.x) && corner.y <= hi.y.min(b.y);
+            if overlap && self.grid.cell_of(corner) == cell {
+                f(k as usize);
             }
-        }
+        });
     }
 }
 

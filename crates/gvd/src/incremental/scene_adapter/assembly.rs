@@ -2,12 +2,11 @@
 //! (see the parent module's doc): labels, kept edges, chains, their polylines, insides
 //! and clipping.
 
+use super::phases::Phases;
 use super::Generators;
 use crate::complex::{Edge, Generator, SmallVec, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
-use crate::incremental::joints;
-use crate::incremental::phases::Phases;
-use crate::incremental::segments::{Gen, RawEdge, RawVertex, SegmentDiagram};
+use crate::incremental::segments_arcs::{joints, Gen, RawEdge, RawVertex, SegmentDiagram};
 use crate::par::{filter_map_range, join, map_range};
 use crate::scene::{Mode, Scene};
 use crate::Error;

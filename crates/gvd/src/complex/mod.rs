@@ -1,6 +1,8 @@
 //! The output model shared by every algorithm family: a Voronoi complex of vertices,
 //! edges and cells, as `../SCENE_FORMAT.md` ("Diagram") defines it.
 
+pub(crate) mod cells;
+
 use crate::geom::Point;
 use serde::{Deserialize, Serialize};
 /// The inline vectors of [`Vertex::sites`], [`Edge::points`] and [`Cell::rings`], re-exported for

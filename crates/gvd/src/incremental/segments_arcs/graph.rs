@@ -3,8 +3,8 @@
 
 use super::geometry::Gen;
 use crate::geom::Point;
-use crate::incremental::predicates::circumcenter;
-use crate::incremental::PointDiagram;
+use crate::incremental::points::predicates::circumcenter;
+use crate::incremental::points::PointDiagram;
 
 pub(crate) const NONE: u32 = u32::MAX;
 

@@ -338,7 +338,14 @@ impl<'a> Graph<'a> {
 
     /// The faces of the subdivision, except the outside of the domain.
     fn faces(mut self, complex: &VoronoiComplex) -> Vec<Face> {
-        // Merge the ends of edges shorter than `tol`, then boundary points closer than it.
+        let on = self.merge_close_nodes(complex);
+        let half = self.half_edges(complex, &on);
+        walk_faces(&half, self.nodes.len())
+    }
+
+    /// Merges the ends of edges shorter than `tol`, then boundary points closer than it;
+    /// returns the boundary nodes by their position `t` along the boundary.
+    fn merge_close_nodes(&mut self, complex: &VoronoiComplex) -> Vec<(f64, usize)> {
         for (u, v, k) in self.edges.clone() {
             let pts = &complex.edges[k].points;
             let len: f64 = pts.windows(2).map(|w| w[0].dist(w[1])).sum();
@@ -359,7 +366,13 @@ impl<'a> Graph<'a> {
             let r = self.find(i);
             self.nodes[i].at = self.nodes[r].at;
         }
+        on
+    }
 
+    /// The half-edges: both directions of each edge between merged nodes, and of each
+    /// piece of the domain boundary between consecutive boundary nodes (the outer one
+    /// marked `outside`).
+    fn half_edges(&mut self, complex: &VoronoiComplex, on: &[(f64, usize)]) -> Vec<HalfEdge> {
         let mut half: Vec<HalfEdge> = Vec::new();
         for (u, v, k) in self.edges.clone() {
             let (u, v) = (self.find(u), self.find(v));
@@ -385,7 +398,7 @@ impl<'a> Graph<'a> {
             });
         }
         let mut ring: Vec<usize> = Vec::new();
-        for &(_, i) in &on {
+        for &(_, i) in on {
             let r = self.find(i);
             if ring.last() != Some(&r) && ring.first() != Some(&r) {
                 ring.push(r);
@@ -409,44 +422,50 @@ impl<'a> Graph<'a> {
                 });
             }
         }
-
-        // Outgoing half-edges around each node, counter-clockwise.
-        let mut out: Vec<Vec<usize>> = vec![Vec::new(); self.nodes.len()];
-        for (h, he) in half.iter().enumerate() {
-            out[he.from].push(h);
-        }
-        let mut pos = vec![0; half.len()];
-        for list in &mut out {
-            sort_around(list, &half);
-            for (i, &h) in list.iter().enumerate() {
-                pos[h] = i;
-            }
-        }
-        let next = |h: usize| {
-            let t = h ^ 1;
-            let list = &out[half[t].from];
-            list[(pos[t] + list.len() - 1) % list.len()]
-        };
-
-        let mut seen = vec![false; half.len()];
-        let mut faces = Vec::new();
-        for start in 0..half.len() {
-            let (mut ring, mut sites, mut outside) = (Vec::new(), Vec::new(), false);
-            let mut h = start;
-            while !seen[h] {
-                seen[h] = true;
-                let he = &half[h];
-                outside |= he.outside;
-                ring.extend_from_slice(&he.points[..he.points.len() - 1]);
-                sites.extend(std::iter::repeat_n(he.sites, he.points.len() - 1));
-                h = next(h);
-            }
-            if h == start && !outside {
-                faces.extend(Face::new(ring, sites));
-            }
-        }
-        faces
+        half
     }
+}
+
+/// The faces traced by the half-edges (twins `h` and `h ^ 1`) leaving `nodes` nodes:
+/// each face is the cycle of next half-edges, turning clockwise at each node, that never
+/// runs outside the domain.
+fn walk_faces(half: &[HalfEdge], nodes: usize) -> Vec<Face> {
+    // Outgoing half-edges around each node, counter-clockwise.
+    let mut out: Vec<Vec<usize>> = vec![Vec::new(); nodes];
+    for (h, he) in half.iter().enumerate() {
+        out[he.from].push(h);
+    }
+    let mut pos = vec![0; half.len()];
+    for list in &mut out {
+        sort_around(list, half);
+        for (i, &h) in list.iter().enumerate() {
+            pos[h] = i;
+        }
+    }
+    let next = |h: usize| {
+        let t = h ^ 1;
+        let list = &out[half[t].from];
+        list[(pos[t] + list.len() - 1) % list.len()]
+    };
+
+    let mut seen = vec![false; half.len()];
+    let mut faces = Vec::new();
+    for start in 0..half.len() {
+        let (mut ring, mut sites, mut outside) = (Vec::new(), Vec::new(), false);
+        let mut h = start;
+        while !seen[h] {
+            seen[h] = true;
+            let he = &half[h];
+            outside |= he.outside;
+            ring.extend_from_slice(&he.points[..he.points.len() - 1]);
+            sites.extend(std::iter::repeat_n(he.sites, he.points.len() - 1));
+            h = next(h);
+        }
+        if h == start && !outside {
+            faces.extend(Face::new(ring, sites));
+        }
+    }
+    faces
 }
 
 /// Sorts half-edges leaving one node by the angle of their first segment,

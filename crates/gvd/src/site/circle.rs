@@ -2,8 +2,8 @@
 //! `f(q) = |q − c| − r`, bounded in closed form (the fast path; the implicit path of
 //! [`super::implicit`] computes the same field from `g = |q − c|² − w²`, `w = z + r`).
 
-use super::PairBound;
-use crate::geom::{Aabb, Point};
+use super::{DistanceField, PairBound};
+use crate::geom::{Aabb, Axis, Point};
 use crate::num::Interval;
 
 /// The field `f(q) = |q − c| − r` of a circle (a point when `r = 0`).
@@ -39,22 +39,32 @@ impl CircleField {
     pub fn new(center: Point, radius: f64) -> Self {
         CircleField { center, radius }
     }
+}
+
+impl DistanceField for CircleField {
+    type State = ();
+
+    fn state(&self, _: &Aabb) {}
+
+    fn split(&self, _: &(), _: &Aabb, _: Axis, _: f64) -> ((), ()) {
+        ((), ())
+    }
 
     /// The exact range of `|q − c| − r` over the box, outward-rounded.
-    pub fn bound(&self, b: &Aabb) -> Interval {
+    fn bound(&self, _: &(), b: &Aabb) -> Interval {
         dist_bound(self.center, b) - self.radius
     }
 
     /// The gradient (a unit vector wherever it exists) over the box.
-    pub fn gradient_bound(&self, b: &Aabb) -> [Interval; 2] {
-        unit_bound(self.center, b)
+    fn gradient_bound(&self, _: &(), b: &Aabb) -> Option<[Interval; 2]> {
+        Some(unit_bound(self.center, b))
     }
 
-    pub fn value(&self, q: Point) -> f64 {
+    fn value(&self, q: Point) -> f64 {
         q.dist(self.center) - self.radius
     }
 
-    pub fn gradient(&self, q: Point) -> Point {
+    fn gradient(&self, q: Point) -> Point {
         let d = q - self.center;
         let r = d.norm();
         if r == 0.0 {
@@ -62,6 +72,11 @@ impl CircleField {
         } else {
             d * (1.0 / r)
         }
+    }
+
+    /// Two circles: see [`pair`].
+    fn pair(&self, _: &(), other: &CircleField, _: &(), b: &Aabb) -> PairBound {
+        pair((self.center, self.radius), (other.center, other.radius), b)
     }
 }
 

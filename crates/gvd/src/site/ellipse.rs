@@ -19,6 +19,7 @@
 //! the curve.
 
 use super::implicit::{ImplicitField, ImplicitState};
+use super::DistanceField;
 use crate::geom::{Aabb, Axis, Point};
 use crate::num::poly::Poly;
 use crate::num::Interval;
@@ -89,29 +90,6 @@ impl EllipseField {
         &self.implicit
     }
 
-    pub fn state(&self, b: &Aabb) -> ImplicitState {
-        self.implicit.state(b)
-    }
-
-    pub fn split(
-        &self,
-        s: &ImplicitState,
-        b: &Aabb,
-        axis: Axis,
-        at: f64,
-    ) -> (ImplicitState, ImplicitState) {
-        self.implicit.split(s, b, axis, at)
-    }
-
-    pub fn bound(&self, s: &ImplicitState) -> Interval {
-        let r = self.implicit.bound(s);
-        Interval::new(r.lo.max(0.0), r.hi.max(0.0))
-    }
-
-    pub fn gradient_bound(&self, s: &ImplicitState, b: &Aabb) -> Option<[Interval; 2]> {
-        self.implicit.gradient_bound(s, b)
-    }
-
     /// `q` in the ellipse's frame.
     fn to_local(&self, q: Point) -> Point {
         let d = q - self.center;
@@ -176,12 +154,39 @@ impl EllipseField {
         let g = Point::new(self.cos * nx - self.sin * ny, self.sin * nx + self.cos * ny);
         Some((dist, g))
     }
+}
 
-    pub fn value(&self, q: Point) -> f64 {
+impl DistanceField for EllipseField {
+    type State = ImplicitState;
+
+    fn state(&self, b: &Aabb) -> ImplicitState {
+        self.implicit.state(b)
+    }
+
+    fn split(
+        &self,
+        s: &ImplicitState,
+        b: &Aabb,
+        axis: Axis,
+        at: f64,
+    ) -> (ImplicitState, ImplicitState) {
+        self.implicit.split(s, b, axis, at)
+    }
+
+    fn bound(&self, s: &ImplicitState, b: &Aabb) -> Interval {
+        let r = self.implicit.bound(s, b);
+        Interval::new(r.lo.max(0.0), r.hi.max(0.0))
+    }
+
+    fn gradient_bound(&self, s: &ImplicitState, b: &Aabb) -> Option<[Interval; 2]> {
+        self.implicit.gradient_bound(s, b)
+    }
+
+    fn value(&self, q: Point) -> f64 {
         self.distance(q).map_or(0.0, |d| d.0)
     }
 
-    pub fn gradient(&self, q: Point) -> Point {
+    fn gradient(&self, q: Point) -> Point {
         self.distance(q).map_or(Point::new(0.0, 0.0), |d| d.1)
     }
 }

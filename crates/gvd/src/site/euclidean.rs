@@ -1,7 +1,7 @@
 //! A point site under the Euclidean metric: the field `|q − p|`, bounded in closed form.
 
-use super::PairBound;
-use crate::geom::{Aabb, Point};
+use super::{DistanceField, PairBound};
+use crate::geom::{Aabb, Axis, Point};
 use crate::num::Interval;
 
 /// The field `f(q) = |q − p|` of a point `p`.
@@ -18,19 +18,29 @@ impl EuclideanPoint {
     fn offsets(&self, b: &Aabb) -> (Interval, Interval) {
         (b.x() - self.at.x, b.y() - self.at.y)
     }
+}
+
+impl DistanceField for EuclideanPoint {
+    type State = ();
+
+    fn state(&self, _: &Aabb) {}
+
+    fn split(&self, _: &(), _: &Aabb, _: Axis, _: f64) -> ((), ()) {
+        ((), ())
+    }
 
     /// The exact range of `|q − p|` over the box, outward-rounded:
     /// `sqrt((X − px)² + (Y − py)²)` with tight interval squares.
-    pub fn bound(&self, b: &Aabb) -> Interval {
+    fn bound(&self, _: &(), b: &Aabb) -> Interval {
         let (dx, dy) = self.offsets(b);
         (dx.sqr() + dy.sqr()).sqrt()
     }
 
     /// `∇f = (q − p)/|q − p|`, bounded over the box; inside the unit square when the box
     /// holds `p` (the gradient is a unit vector wherever it exists).
-    pub fn gradient_bound(&self, b: &Aabb) -> Option<[Interval; 2]> {
+    fn gradient_bound(&self, _: &(), b: &Aabb) -> Option<[Interval; 2]> {
         let (dx, dy) = self.offsets(b);
-        let r = self.bound(b);
+        let r = self.bound(&(), b);
         let unit = Interval::new(-1.0, 1.0);
         match (dx.div(r), dy.div(r)) {
             (Some(gx), Some(gy)) => Some([
@@ -43,12 +53,12 @@ impl EuclideanPoint {
 
     /// `sqrt(dx² + dy²)`: faster than `hypot`, and exact enough for coordinates far
     /// below 1e150.
-    pub fn value(&self, q: Point) -> f64 {
+    fn value(&self, q: Point) -> f64 {
         let (dx, dy) = (q.x - self.at.x, q.y - self.at.y);
         (dx * dx + dy * dy).sqrt()
     }
 
-    pub fn gradient(&self, q: Point) -> Point {
+    fn gradient(&self, q: Point) -> Point {
         let d = q - self.at;
         let r = d.norm();
         if r == 0.0 {
@@ -60,7 +70,7 @@ impl EuclideanPoint {
 
     /// The bisector with another point in its linear form
     /// `h(q) = |q − a|² − |q − b|² = (b − a)·(2q − a − b)`, same sign as `|q − a| − |q − b|`.
-    pub fn pair(&self, other: &EuclideanPoint, b: &Aabb) -> PairBound {
+    fn pair(&self, _: &(), other: &EuclideanPoint, _: &(), b: &Aabb) -> PairBound {
         let (a, c) = (self.at, other.at);
         let ux = Interval::point(c.x) - Interval::point(a.x);
         let uy = Interval::point(c.y) - Interval::point(a.y);
@@ -87,11 +97,11 @@ mod tests {
             let g = EuclideanPoint::new(Point::new(qx, qy));
             let b = Aabb::new(Point::new(x0, y0), Point::new(x0 + w, y0 + h));
             let q = b.at(u, v);
-            prop_assert!(f.bound(&b).contains(f.value(q)));
-            let gb = f.gradient_bound(&b).unwrap();
+            prop_assert!(f.bound(&(), &b).contains(f.value(q)));
+            let gb = f.gradient_bound(&(), &b).unwrap();
             let gq = f.gradient(q);
             prop_assert!(gb[0].contains(gq.x) && gb[1].contains(gq.y));
-            let pb = f.pair(&g, &b);
+            let pb = f.pair(&(), &g, &(), &b);
             let h = f.value(q) - g.value(q);
             let lin = (q - f.at).dot(q - f.at) - (q - g.at).dot(q - g.at);
             prop_assert!(pb.value.contains(lin) || lin.abs() < 1e-12);

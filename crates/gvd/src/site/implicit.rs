@@ -23,6 +23,7 @@
 //! negative values inside the circle, as the Apollonius diagram needs). A closed site
 //! (an ellipse) may give an `inside` polynomial: where it is negative the field is 0.
 
+use super::DistanceField;
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
 use crate::num::bernstein::{Bernstein1, Bernstein2, Bernstein3};
@@ -236,21 +237,6 @@ impl ImplicitField {
         }
     }
 
-    /// The state of box `b` from scratch.
-    pub fn state(&self, b: &Aabb) -> ImplicitState {
-        let lb = self.local(b);
-        let side = self.side(&lb);
-        if side == Side::Inside {
-            return self.inside_state();
-        }
-        let Some(r) = self.root_bound(&lb) else {
-            return self.unbounded_state(side);
-        };
-        let t = Interval::new(0.0, r);
-        let form = Bernstein3::from_poly(&self.g, &lb, t);
-        self.settle(form, t, false, side, &lb)
-    }
-
     fn inside_state(&self) -> ImplicitState {
         ImplicitState {
             form: None,
@@ -441,8 +427,50 @@ impl ImplicitField {
         v
     }
 
+    /// The smallest non-negative root in `t` of `g(q, t)`, if any.
+    pub fn root_at(&self, q: Point) -> Option<f64> {
+        let u = q - self.origin;
+        let c: Vec<f64> = self.coef.iter().map(|p| p.eval(u.x, u.y, 0.0)).collect();
+        smallest_nonneg_root(&c)
+    }
+
+    /// Central differences of the value (where `g_z` vanishes).
+    fn finite_difference(&self, q: Point) -> Point {
+        let h = 1e-7 * (1.0 + q.x.abs().max(q.y.abs()));
+        let dx = Point::new(h, 0.0);
+        let dy = Point::new(0.0, h);
+        let d = Point::new(
+            (self.value(q + dx) - self.value(q - dx)) / (2.0 * h),
+            (self.value(q + dy) - self.value(q - dy)) / (2.0 * h),
+        );
+        if d.x.is_finite() && d.y.is_finite() {
+            d
+        } else {
+            Point::new(0.0, 0.0)
+        }
+    }
+}
+
+impl DistanceField for ImplicitField {
+    type State = ImplicitState;
+
+    /// The state of box `b` from scratch.
+    fn state(&self, b: &Aabb) -> ImplicitState {
+        let lb = self.local(b);
+        let side = self.side(&lb);
+        if side == Side::Inside {
+            return self.inside_state();
+        }
+        let Some(r) = self.root_bound(&lb) else {
+            return self.unbounded_state(side);
+        };
+        let t = Interval::new(0.0, r);
+        let form = Bernstein3::from_poly(&self.g, &lb, t);
+        self.settle(form, t, false, side, &lb)
+    }
+
     /// The halves of a state split at `at` along `axis`.
-    pub fn split(
+    fn split(
         &self,
         s: &ImplicitState,
         b: &Aabb,
@@ -493,12 +521,12 @@ impl ImplicitField {
         (child(fl, &lb), child(fr, &rb))
     }
 
-    pub fn bound(&self, s: &ImplicitState) -> Interval {
+    fn bound(&self, s: &ImplicitState, _: &Aabb) -> Interval {
         s.bound
     }
 
     /// `∇f = −∇_xy g / g_z` over the box, from the derivative forms over box × `T`.
-    pub fn gradient_bound(&self, s: &ImplicitState, b: &Aabb) -> Option<[Interval; 2]> {
+    fn gradient_bound(&self, s: &ImplicitState, b: &Aabb) -> Option<[Interval; 2]> {
         let zero = Interval::point(0.0);
         let unit = Interval::new(-1.0, 1.0);
         let fallback = || self.lipschitz.then_some([unit, unit]);
@@ -545,14 +573,7 @@ impl ImplicitField {
         Some(g)
     }
 
-    /// The smallest non-negative root in `t` of `g(q, t)`, if any.
-    pub fn root_at(&self, q: Point) -> Option<f64> {
-        let u = q - self.origin;
-        let c: Vec<f64> = self.coef.iter().map(|p| p.eval(u.x, u.y, 0.0)).collect();
-        smallest_nonneg_root(&c)
-    }
-
-    pub fn value(&self, q: Point) -> f64 {
+    fn value(&self, q: Point) -> f64 {
         if let Some(p) = &self.inside {
             let u = q - self.origin;
             if p.eval(u.x, u.y, 0.0) < 0.0 {
@@ -568,7 +589,7 @@ impl ImplicitField {
         }
     }
 
-    pub fn gradient(&self, q: Point) -> Point {
+    fn gradient(&self, q: Point) -> Point {
         if let Some(p) = &self.inside {
             let u = q - self.origin;
             if p.eval(u.x, u.y, 0.0) < 0.0 {
@@ -591,22 +612,6 @@ impl ImplicitField {
             d
         } else {
             self.finite_difference(q)
-        }
-    }
-
-    /// Central differences of the value (where `g_z` vanishes).
-    fn finite_difference(&self, q: Point) -> Point {
-        let h = 1e-7 * (1.0 + q.x.abs().max(q.y.abs()));
-        let dx = Point::new(h, 0.0);
-        let dy = Point::new(0.0, h);
-        let d = Point::new(
-            (self.value(q + dx) - self.value(q - dx)) / (2.0 * h),
-            (self.value(q + dy) - self.value(q - dy)) / (2.0 * h),
-        );
-        if d.x.is_finite() && d.y.is_finite() {
-            d
-        } else {
-            Point::new(0.0, 0.0)
         }
     }
 }

@@ -5,8 +5,8 @@
 //! `p[(x − a)^(p−1) − (x − c)^(p−1)]` has the sign of `c − a` everywhere). Hence the
 //! bisector of two lp points is a graph over y (or over x when a = c) in the whole plane.
 
-use super::PairBound;
-use crate::geom::{Aabb, Point};
+use super::{bound_difference, DistanceField, PairBound};
+use crate::geom::{Aabb, Axis, Point};
 use crate::num::interval::ipow;
 use crate::num::Interval;
 
@@ -21,35 +21,48 @@ impl LpPoint {
     pub fn new(at: Point, p: u32) -> Self {
         LpPoint { at, p }
     }
+}
+
+impl DistanceField for LpPoint {
+    type State = ();
+
+    fn state(&self, _: &Aabb) {}
+
+    fn split(&self, _: &(), _: &Aabb, _: Axis, _: f64) -> ((), ()) {
+        ((), ())
+    }
 
     /// The exact range (outward-rounded) of `(X − a)^p + (Y − b)^p`.
-    pub fn bound(&self, b: &Aabb) -> Interval {
+    fn bound(&self, _: &(), b: &Aabb) -> Interval {
         (b.x() - self.at.x).powi(self.p) + (b.y() - self.at.y).powi(self.p)
     }
 
     /// `∇f = p·((x − a)^(p−1), (y − b)^(p−1))`: odd powers are monotone, so exact ranges.
-    pub fn gradient_bound(&self, b: &Aabb) -> [Interval; 2] {
+    fn gradient_bound(&self, _: &(), b: &Aabb) -> Option<[Interval; 2]> {
         let k = self.p as f64;
-        [
+        Some([
             (b.x() - self.at.x).powi(self.p - 1).scale(k),
             (b.y() - self.at.y).powi(self.p - 1).scale(k),
-        ]
+        ])
     }
 
-    pub fn value(&self, q: Point) -> f64 {
+    fn value(&self, q: Point) -> f64 {
         ipow(q.x - self.at.x, self.p) + ipow(q.y - self.at.y, self.p)
     }
 
-    pub fn gradient(&self, q: Point) -> Point {
+    fn gradient(&self, q: Point) -> Point {
         let (k, p) = (self.p as f64, self.p - 1);
         Point::new(k * ipow(q.x - self.at.x, p), k * ipow(q.y - self.at.y, p))
     }
 
-    /// Bounds of `f_self − f_other` for two lp points with the same p, coordinate by
+    /// Bounds of `f_self − f_other`; for two lp points with the same p coordinate by
     /// coordinate: the range of a monotone term is the hull of its end values, and its
     /// derivative's range is the hull of the values at the ends and at the one critical
     /// point `(a + c)/2` of `(x − a)^(p−1) − (x − c)^(p−1)`.
-    pub fn pair(&self, other: &LpPoint, b: &Aabb) -> PairBound {
+    fn pair(&self, _: &(), other: &LpPoint, _: &(), b: &Aabb) -> PairBound {
+        if other.p != self.p {
+            return bound_difference(self, &(), other, &(), b);
+        }
         let p = self.p;
         let term = |t: Interval, a: f64, c: f64| (t - a).powi(p) - (t - c).powi(p);
         let slope = |t: Interval, a: f64, c: f64| {
@@ -92,15 +105,15 @@ mod tests {
             let q = b.at(u, v);
             let tol = |x: f64| 1e-12 * (1.0 + x.abs());
             let fv = f.value(q);
-            prop_assert!(f.bound(&b).lo - tol(fv) <= fv && fv <= f.bound(&b).hi + tol(fv));
-            let pb = f.pair(&g, &b);
+            prop_assert!(f.bound(&(), &b).lo - tol(fv) <= fv && fv <= f.bound(&(), &b).hi + tol(fv));
+            let pb = f.pair(&(), &g, &(), &b);
             let hv = fv - g.value(q);
             prop_assert!(pb.value.lo - tol(hv) <= hv && hv <= pb.value.hi + tol(hv));
             let gq = f.gradient(q) - g.gradient(q);
             let gb = pb.gradient.unwrap();
             prop_assert!(gb[0].lo - tol(gq.x) <= gq.x && gq.x <= gb[0].hi + tol(gq.x));
             prop_assert!(gb[1].lo - tol(gq.y) <= gq.y && gq.y <= gb[1].hi + tol(gq.y));
-            let fg = f.gradient_bound(&b);
+            let fg = f.gradient_bound(&(), &b).unwrap();
             let fq = f.gradient(q);
             prop_assert!(fg[0].lo - tol(fq.x) <= fq.x && fq.x <= fg[0].hi + tol(fq.x));
         }
@@ -111,7 +124,7 @@ mod tests {
             prop_assume!((px - qx).abs() > 1e-3);
             let (f, g) = (LpPoint::new(Point::new(px, py), 8), LpPoint::new(Point::new(qx, py + 0.3), 8));
             let b = Aabb::new(Point::new(x0, y0), Point::new(x0 + w, y0 + w));
-            prop_assert!(f.pair(&g, &b).gradient.unwrap()[0].excludes_zero());
+            prop_assert!(f.pair(&(), &g, &(), &b).gradient.unwrap()[0].excludes_zero());
         }
     }
 }

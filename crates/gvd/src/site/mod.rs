@@ -104,12 +104,15 @@ pub enum SiteField {
     Algebraic(Box<AlgebraicField>),
 }
 
-/// The per-box state of a [`SiteField`].
+/// The per-box state of a [`SiteField`]: its family's own state (large ones boxed).
 #[derive(Clone, Debug)]
 pub enum FieldState {
-    None,
-    Bernstein(Bernstein2),
+    Euclidean(()),
+    Polynomial(Bernstein2),
+    Lp(()),
+    Circle(()),
     Implicit(Box<ImplicitState>),
+    Ellipse(Box<ImplicitState>),
     Algebraic(Box<AlgebraicState>),
 }
 
@@ -203,132 +206,83 @@ impl SiteField {
     }
 }
 
-impl DistanceField for SiteField {
-    type State = FieldState;
+/// [`DistanceField`] for [`SiteField`], delegating to each family: `$variant` names
+/// both a [`SiteField`] and its [`FieldState`]. A state of another family (never made
+/// by the engine) is replaced by a fresh one for the box.
+macro_rules! delegate_to_families {
+    ($($variant:ident),* $(,)?) => {
+        impl DistanceField for SiteField {
+            type State = FieldState;
 
-    fn state(&self, b: &Aabb) -> FieldState {
-        match self {
-            SiteField::Euclidean(_) | SiteField::Circle(_) | SiteField::Lp(_) => FieldState::None,
-            SiteField::Polynomial(f) => FieldState::Bernstein(f.bernstein(b)),
-            SiteField::Implicit(f) => FieldState::Implicit(Box::new(f.state(b))),
-            SiteField::Ellipse(f) => FieldState::Implicit(Box::new(f.state(b))),
-            SiteField::Algebraic(f) => FieldState::Algebraic(Box::new(f.state(b))),
-        }
-    }
+            fn state(&self, b: &Aabb) -> FieldState {
+                match self {
+                    $(SiteField::$variant(f) => FieldState::$variant(f.state(b).into()),)*
+                }
+            }
 
-    fn split(&self, s: &FieldState, b: &Aabb, axis: Axis, at: f64) -> (FieldState, FieldState) {
-        match (self, s) {
-            (SiteField::Polynomial(f), FieldState::Bernstein(bf)) => {
-                let (l, r) = f.split(bf, b, axis, at);
-                (FieldState::Bernstein(l), FieldState::Bernstein(r))
+            fn split(&self, s: &FieldState, b: &Aabb, axis: Axis, at: f64) -> (FieldState, FieldState) {
+                match self {
+                    $(SiteField::$variant(f) => {
+                        let (l, r) = match s {
+                            FieldState::$variant(s) => f.split(s, b, axis, at),
+                            _ => f.split(&f.state(b), b, axis, at),
+                        };
+                        (FieldState::$variant(l.into()), FieldState::$variant(r.into()))
+                    })*
+                }
             }
-            (SiteField::Implicit(f), FieldState::Implicit(st)) => {
-                let (l, r) = f.split(st, b, axis, at);
-                (
-                    FieldState::Implicit(Box::new(l)),
-                    FieldState::Implicit(Box::new(r)),
-                )
-            }
-            (SiteField::Ellipse(f), FieldState::Implicit(st)) => {
-                let (l, r) = f.split(st, b, axis, at);
-                (
-                    FieldState::Implicit(Box::new(l)),
-                    FieldState::Implicit(Box::new(r)),
-                )
-            }
-            (SiteField::Algebraic(f), FieldState::Algebraic(st)) => {
-                let (l, r) = f.split(st, b, axis, at);
-                (
-                    FieldState::Algebraic(Box::new(l)),
-                    FieldState::Algebraic(Box::new(r)),
-                )
-            }
-            (SiteField::Implicit(_) | SiteField::Ellipse(_) | SiteField::Algebraic(_), _) => {
-                let (lb, rb) = b.split(axis, at);
-                (self.state(&lb), self.state(&rb))
-            }
-            _ => (FieldState::None, FieldState::None),
-        }
-    }
 
-    fn bound(&self, s: &FieldState, b: &Aabb) -> Interval {
-        match (self, s) {
-            (SiteField::Euclidean(e), _) => e.bound(b),
-            (SiteField::Lp(f), _) => f.bound(b),
-            (SiteField::Circle(c), _) => c.bound(b),
-            (SiteField::Polynomial(_), FieldState::Bernstein(bf)) => bf.range(),
-            (SiteField::Polynomial(f), _) => f.bernstein(b).range(),
-            (SiteField::Implicit(f), FieldState::Implicit(st)) => f.bound(st),
-            (SiteField::Implicit(f), _) => f.bound(&f.state(b)),
-            (SiteField::Ellipse(f), FieldState::Implicit(st)) => f.bound(st),
-            (SiteField::Ellipse(f), _) => f.bound(&f.state(b)),
-            (SiteField::Algebraic(f), FieldState::Algebraic(st)) => f.bound(st, b),
-            (SiteField::Algebraic(f), _) => f.bound(&f.state(b), b),
-        }
-    }
-
-    fn gradient_bound(&self, s: &FieldState, b: &Aabb) -> Option<[Interval; 2]> {
-        match (self, s) {
-            (SiteField::Euclidean(e), _) => e.gradient_bound(b),
-            (SiteField::Lp(f), _) => Some(f.gradient_bound(b)),
-            (SiteField::Polynomial(_), FieldState::Bernstein(bf)) => {
-                Some(polynomial::gradient_bound(bf, b))
+            fn bound(&self, s: &FieldState, b: &Aabb) -> Interval {
+                match self {
+                    $(SiteField::$variant(f) => match s {
+                        FieldState::$variant(s) => f.bound(s, b),
+                        _ => f.bound(&f.state(b), b),
+                    },)*
+                }
             }
-            (SiteField::Polynomial(f), _) => Some(polynomial::gradient_bound(&f.bernstein(b), b)),
-            (SiteField::Circle(c), _) => Some(c.gradient_bound(b)),
-            (SiteField::Implicit(f), FieldState::Implicit(st)) => f.gradient_bound(st, b),
-            (SiteField::Implicit(f), _) => f.gradient_bound(&f.state(b), b),
-            (SiteField::Ellipse(f), FieldState::Implicit(st)) => f.gradient_bound(st, b),
-            (SiteField::Ellipse(f), _) => f.gradient_bound(&f.state(b), b),
-            (SiteField::Algebraic(f), FieldState::Algebraic(st)) => f.gradient_bound(st, b),
-            (SiteField::Algebraic(f), _) => f.gradient_bound(&f.state(b), b),
-        }
-    }
 
-    fn value(&self, q: Point) -> f64 {
-        match self {
-            SiteField::Euclidean(e) => e.value(q),
-            SiteField::Lp(f) => f.value(q),
-            SiteField::Polynomial(f) => f.value(q),
-            SiteField::Circle(c) => c.value(q),
-            SiteField::Implicit(f) => f.value(q),
-            SiteField::Ellipse(f) => f.value(q),
-            SiteField::Algebraic(f) => f.value(q),
-        }
-    }
+            fn gradient_bound(&self, s: &FieldState, b: &Aabb) -> Option<[Interval; 2]> {
+                match self {
+                    $(SiteField::$variant(f) => match s {
+                        FieldState::$variant(s) => f.gradient_bound(s, b),
+                        _ => f.gradient_bound(&f.state(b), b),
+                    },)*
+                }
+            }
 
-    fn gradient(&self, q: Point) -> Point {
-        match self {
-            SiteField::Euclidean(e) => e.gradient(q),
-            SiteField::Lp(f) => f.gradient(q),
-            SiteField::Polynomial(f) => f.gradient(q),
-            SiteField::Circle(c) => c.gradient(q),
-            SiteField::Implicit(f) => f.gradient(q),
-            SiteField::Ellipse(f) => f.gradient(q),
-            SiteField::Algebraic(f) => f.gradient(q),
-        }
-    }
+            fn value(&self, q: Point) -> f64 {
+                match self {
+                    $(SiteField::$variant(f) => f.value(q),)*
+                }
+            }
 
-    fn pair(&self, s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> PairBound {
-        match (self, other, s, so) {
-            (SiteField::Euclidean(p), SiteField::Euclidean(q), _, _) => p.pair(q, b),
-            (SiteField::Lp(p), SiteField::Lp(q), _, _) if p.p == q.p => p.pair(q, b),
-            (SiteField::Circle(p), SiteField::Circle(q), _, _) => {
-                circle::pair((p.center, p.radius), (q.center, q.radius), b)
+            fn gradient(&self, q: Point) -> Point {
+                match self {
+                    $(SiteField::$variant(f) => f.gradient(q),)*
+                }
             }
-            (SiteField::Circle(p), SiteField::Euclidean(q), _, _) => {
-                circle::pair((p.center, p.radius), (q.at, 0.0), b)
+
+            /// One family's own pair bound; across families, a point and a circle by
+            /// the circles' form, else the difference of the two bounds.
+            fn pair(&self, s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> PairBound {
+                match (self, other, s, so) {
+                    $((
+                        SiteField::$variant(p),
+                        SiteField::$variant(q),
+                        FieldState::$variant(s),
+                        FieldState::$variant(so),
+                    ) => p.pair(s, q, so, b),)*
+                    (SiteField::Circle(p), SiteField::Euclidean(q), _, _) => {
+                        circle::pair((p.center, p.radius), (q.at, 0.0), b)
+                    }
+                    (SiteField::Euclidean(p), SiteField::Circle(q), _, _) => {
+                        circle::pair((p.at, 0.0), (q.center, q.radius), b)
+                    }
+                    _ => bound_difference(self, s, other, so, b),
+                }
             }
-            (SiteField::Euclidean(p), SiteField::Circle(q), _, _) => {
-                circle::pair((p.at, 0.0), (q.center, q.radius), b)
-            }
-            (
-                SiteField::Polynomial(_),
-                SiteField::Polynomial(_),
-                FieldState::Bernstein(fa),
-                FieldState::Bernstein(fb),
-            ) => polynomial::pair(fa, fb, b),
-            _ => bound_difference(self, s, other, so, b),
         }
-    }
+    };
 }
+
+delegate_to_families!(Euclidean, Polynomial, Lp, Circle, Implicit, Ellipse, Algebraic);

@@ -3,7 +3,7 @@
 //! the field's Bernstein coefficients over it, split by de Casteljau; the range of the
 //! coefficients bounds the field (the convex-hull property).
 
-use super::PairBound;
+use super::{DistanceField, PairBound};
 use crate::geom::{Aabb, Axis, Point};
 use crate::num::bernstein::Bernstein2;
 use crate::num::poly::Poly;
@@ -59,9 +59,13 @@ impl PolynomialField {
         };
         PolynomialField::local(at, poly)
     }
+}
+
+impl DistanceField for PolynomialField {
+    type State = Bernstein2;
 
     /// The Bernstein form of the field over `b`.
-    pub fn bernstein(&self, b: &Aabb) -> Bernstein2 {
+    fn state(&self, b: &Aabb) -> Bernstein2 {
         let local = Aabb::new(b.min - self.origin, b.max - self.origin);
         Bernstein2::from_poly(&self.poly, &local)
     }
@@ -70,13 +74,7 @@ impl PolynomialField {
     /// inherited from the parent; where it has grown large against the child's own
     /// coefficient spread (fields that are tiny near their site, like `(x−a)^8`), the child
     /// is converted afresh from the power basis over its own box.
-    pub fn split(
-        &self,
-        bf: &Bernstein2,
-        b: &Aabb,
-        axis: Axis,
-        at: f64,
-    ) -> (Bernstein2, Bernstein2) {
+    fn split(&self, bf: &Bernstein2, b: &Aabb, axis: Axis, at: f64) -> (Bernstein2, Bernstein2) {
         let t = match axis {
             Axis::X => (at - b.min.x) / b.width(),
             Axis::Y => (at - b.min.y) / b.height(),
@@ -86,7 +84,7 @@ impl PolynomialField {
         let refresh = |c: Bernstein2, cb: &Aabb| {
             let spread = c.range().width();
             if c.err > 1e-6 * spread {
-                self.bernstein(cb)
+                self.state(cb)
             } else {
                 c
             }
@@ -94,21 +92,33 @@ impl PolynomialField {
         (refresh(l, &lb), refresh(r, &rb))
     }
 
-    pub fn value(&self, q: Point) -> f64 {
+    fn bound(&self, s: &Bernstein2, _: &Aabb) -> Interval {
+        s.range()
+    }
+
+    fn gradient_bound(&self, s: &Bernstein2, b: &Aabb) -> Option<[Interval; 2]> {
+        Some(gradient_bound(s, b))
+    }
+
+    fn value(&self, q: Point) -> f64 {
         let u = q - self.origin;
         self.poly.eval(u.x, u.y, 0.0)
     }
 
-    pub fn gradient(&self, q: Point) -> Point {
+    fn gradient(&self, q: Point) -> Point {
         let u = q - self.origin;
         Point::new(self.dx.eval(u.x, u.y, 0.0), self.dy.eval(u.x, u.y, 0.0))
+    }
+
+    fn pair(&self, s: &Bernstein2, _: &Self, so: &Bernstein2, b: &Aabb) -> PairBound {
+        pair(s, so, b)
     }
 }
 
 /// `∇f` over the box from the Bernstein form's derivatives (taken in the box's relative
 /// coordinates, hence divided by the box's width and height).
 /// A side of zero length (a box degenerated to a segment) gives no bound in its direction.
-pub(super) fn gradient_bound(bf: &Bernstein2, b: &Aabb) -> [Interval; 2] {
+fn gradient_bound(bf: &Bernstein2, b: &Aabb) -> [Interval; 2] {
     let per_unit = |axis: Axis, len: f64| {
         if len > 0.0 {
             bf.derivative(axis).range().scale(1.0 / len)
@@ -122,7 +132,7 @@ pub(super) fn gradient_bound(bf: &Bernstein2, b: &Aabb) -> [Interval; 2] {
 /// `h = f_a − f_b` in Bernstein form over the box: far tighter than subtracting the two
 /// ranges, since the common leading terms cancel (the difference of two quadrics with
 /// equal quadratic parts is linear).
-pub(super) fn pair(fa: &Bernstein2, fb: &Bernstein2, b: &Aabb) -> PairBound {
+fn pair(fa: &Bernstein2, fb: &Bernstein2, b: &Aabb) -> PairBound {
     let (value, [gx, gy]) = fa.difference_bounds(fb);
     let per_unit = |g: Interval, len: f64| {
         if len > 0.0 {

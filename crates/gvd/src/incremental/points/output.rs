@@ -30,17 +30,39 @@ struct Node {
 /// The clipped complex; with `with_cells`, also its cells traced from the graph's faces
 /// (`false` when a face could not be traced consistently; `cells` is then empty).
 pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex, bool) {
-    let g = &d.graph;
+    let (mut nodes, parent) = vertex_groups(d);
+    let vertices = output_vertices(d, &mut nodes, parent.as_deref());
+    let edges = output_edges(d, &nodes);
+    let mut c = VoronoiComplex {
+        vertices,
+        edges,
+        ..Default::default()
+    };
+    let traced = !with_cells || trace_cells(d, &nodes, &mut c);
+    record_stats(d, &mut c);
+    (c, traced)
+}
+
+/// Whether vertex `v` is a vertex of three input sites (not the vertex at infinity, no
+/// far generator).
+fn is_real(d: &PointDiagram, v: usize) -> bool {
     let n = d.input.len() as u32;
+    v != GHOST as usize && d.graph.gens[v].iter().all(|&s| s < n)
+}
+
+/// The vertices' circumcentres (scaled coordinates; the vertex at infinity gets a
+/// dummy) and, where zero-length edges join vertices of exactly cocircular generators,
+/// each vertex's group as its least member (`None` when no two vertices coincide).
+fn vertex_groups(d: &PointDiagram) -> (Vec<Node>, Option<Vec<u32>>) {
+    let g = &d.graph;
     let nv = g.gens.len();
     let pos = |s: u32| d.pts[s as usize];
-    let real = |v: usize| v != GHOST as usize && g.gens[v].iter().all(|&s| s < n);
-
-    // Circumcentres (scaled coordinates; the vertex at infinity gets a dummy) and, in
-    // the same pass, the zero-length edges: bit k of `zero[v]` marks half-edge 3v + k as
-    // joining `v` to a vertex of exactly cocircular generators. A vertex with a far
-    // generator lies outside the domain, so only real ones matter.
-    let (mut nodes, zero): (Vec<Node>, Vec<u8>) = unzip_range(nv, 1 << 12, |v| {
+    let real = |v: usize| is_real(d, v);
+    // In the same pass as the circumcentres, the zero-length edges: bit k of `zero[v]`
+    // marks half-edge 3v + k as joining `v` to a vertex of exactly cocircular
+    // generators. A vertex with a far generator lies outside the domain, so only real
+    // ones matter.
+    let (nodes, zero): (Vec<Node>, Vec<u8>) = unzip_range(nv, 1 << 12, |v| {
         let [a, b, c] = g.gens[v].map(pos);
         let at = if v == GHOST as usize {
             Point::default()
@@ -69,28 +91,33 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
         .filter(|&h| zero[h / 3] >> (h % 3) & 1 != 0)
         .map(|h| (h as u32 / 3, g.twin[h] / 3))
         .collect();
-    let merged = !cocircular.is_empty();
-    let mut parent: Vec<u32> = Vec::new();
-    if merged {
-        parent = (0..nv as u32).collect();
-        for &(u, w) in &cocircular {
-            let (ru, rw) = (find(&mut parent, u), find(&mut parent, w));
-            parent[ru.max(rw) as usize] = ru.min(rw);
-        }
-        for v in 0..nv as u32 {
-            // full compression: the root is the group's least vertex
-            parent[v as usize] = find(&mut parent, v);
-        }
+    if cocircular.is_empty() {
+        return (nodes, None);
     }
+    let mut parent: Vec<u32> = (0..nv as u32).collect();
+    for &(u, w) in &cocircular {
+        let (ru, rw) = (find(&mut parent, u), find(&mut parent, w));
+        parent[ru.max(rw) as usize] = ru.min(rw);
+    }
+    for v in 0..nv as u32 {
+        // full compression: the root is the group's least vertex
+        parent[v as usize] = find(&mut parent, v);
+    }
+    (nodes, Some(parent))
+}
 
-    // Output vertices: the groups whose representative lies in the closed domain,
-    // numbered in vertex order.
+/// The output vertices: the groups whose representative lies in the closed domain,
+/// numbered in vertex order, each listing every site of its group; `nodes` learn their
+/// output index and group.
+fn output_vertices(d: &PointDiagram, nodes: &mut [Node], parent: Option<&[u32]>) -> Vec<Vertex> {
+    let g = &d.graph;
+    let nv = g.gens.len();
     let inv = 1.0 / d.scale;
     let site = |s: u32| Generator::Site(d.input[s as usize] as usize);
     let mut outs: Vec<u32> = Vec::new();
     for v in 0..nv {
-        let rep = if merged { parent[v] as usize } else { v };
-        if rep == v && real(v) && d.domain.contains(nodes[v].at) {
+        let rep = parent.map_or(v, |p| p[v] as usize);
+        if rep == v && is_real(d, v) && d.domain.contains(nodes[v].at) {
             nodes[v].out = outs.len() as u32;
             outs.push(v as u32);
         }
@@ -104,7 +131,7 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
             sites: ids.map(|i| Generator::Site(i as usize)).into(),
         }
     });
-    if merged {
+    if let Some(parent) = parent {
         for v in 0..nv {
             let r = parent[v] as usize;
             if r != v {
@@ -123,18 +150,24 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
             v.sites.dedup();
         }
     }
+    vertices
+}
 
-    // Edges between real sites, between distinct groups, clipped to the domain: their
-    // half-edges first, so that the edges are written in place.
+/// The edges between real sites, between distinct groups, clipped to the domain: their
+/// half-edges first, so that the edges are written in place.
+fn output_edges(d: &PointDiagram, nodes: &[Node]) -> Vec<Edge> {
+    let g = &d.graph;
+    let inv = 1.0 / d.scale;
+    let site = |s: u32| Generator::Site(d.input[s as usize] as usize);
     let kept = filter_map_range(g.twin.len(), 1 << 12, |h| {
         let h = h as u32;
         let t = g.twin[h as usize];
-        (h < t && clip(d, &nodes, h, t).is_some()).then_some(h)
+        (h < t && clip(d, nodes, h, t).is_some()).then_some(h)
     });
-    let edges = map_range(kept.len(), 1 << 12, |k| {
+    map_range(kept.len(), 1 << 12, |k| {
         let h = kept[k];
         let ((start, end), (from, to)) =
-            clip(d, &nodes, h, g.twin[h as usize]).expect("a kept edge");
+            clip(d, nodes, h, g.twin[h as usize]).expect("a kept edge");
         let (a, b) = (g.right(h), g.left(h));
         Edge {
             sites: [site(b), site(a)],
@@ -143,31 +176,36 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
             points: [start * inv, end * inv].into(),
             bisector: Vec::new(),
         }
-    });
+    })
+}
 
-    let mut c = VoronoiComplex {
-        vertices,
-        edges,
-        ..Default::default()
+/// Traces `c`'s cells from the graph's faces, along the same segments as the edges;
+/// `false` (and no cells) when a face is inconsistent.
+fn trace_cells(d: &PointDiagram, nodes: &[Node], c: &mut VoronoiComplex) -> bool {
+    let g = &d.graph;
+    let inv = 1.0 / d.scale;
+    // The same segments as the edges, in the direction of each half-edge.
+    let segment = |h: u32| {
+        let t = g.twin[h as usize];
+        let ((p, q), _) = clip(d, nodes, h.min(t), h.max(t))?;
+        Some(if h < t {
+            (p * inv, q * inv)
+        } else {
+            (q * inv, p * inv)
+        })
     };
-    let mut traced = true;
-    if with_cells {
-        // The same segments as the edges, in the direction of each half-edge.
-        let segment = |h: u32| {
-            let t = g.twin[h as usize];
-            let ((p, q), _) = clip(d, &nodes, h.min(t), h.max(t))?;
-            Some(if h < t {
-                (p * inv, q * inv)
-            } else {
-                (q * inv, p * inv)
-            })
-        };
-        let domain = Aabb::new(d.domain.min * inv, d.domain.max * inv);
-        match face_cells(d, segment, domain) {
-            Ok(cells) => c.cells = cells,
-            Err(Inconsistent) => traced = false,
+    let domain = Aabb::new(d.domain.min * inv, d.domain.max * inv);
+    match face_cells(d, segment, domain) {
+        Ok(cells) => {
+            c.cells = cells;
+            true
         }
+        Err(Inconsistent) => false,
     }
+}
+
+/// The run's figures in `c.stats`.
+fn record_stats(d: &PointDiagram, c: &mut VoronoiComplex) {
     let stat = |v: usize| serde_json::Value::from(v);
     c.stats.insert("sites".into(), stat(d.input.len()));
     c.stats
@@ -180,7 +218,6 @@ pub(super) fn to_complex(d: &PointDiagram, with_cells: bool) -> (VoronoiComplex,
         .insert("seed_fallbacks".into(), stat(d.seed_fallbacks));
     c.stats.insert("vertices".into(), stat(c.vertices.len()));
     c.stats.insert("edges".into(), stat(c.edges.len()));
-    (c, traced)
 }
 
 /// The edge of half-edge `h` (`h < t = twin(h)`, from `u = h / 3` to `w = t / 3`) as

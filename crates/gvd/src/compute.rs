@@ -163,8 +163,9 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
 /// (points, segments, open arcs, polylines, fields) has an empty medial axis, refused
 /// rather than written as an empty diagram (or as the Voronoi diagram the point and
 /// subdivision engines would give). Circles, ellipses and full-circle arcs bound
-/// regions, but no engine computes the medial axis inside them yet. Polygons, curves
-/// (closed, or closing up in a chain of pieces) and algebraic curves pass on.
+/// regions, but no engine computes the medial axis inside them yet. Polygons, curves,
+/// algebraic curves and the open sites that may close up in chains (segments,
+/// polylines, arcs: the engine refuses them when they do not) pass on.
 fn check_medial_axis(scene: &Scene) -> Result<(), Error> {
     if scene.mode() != Mode::MedialAxis {
         return Ok(());
@@ -182,6 +183,9 @@ fn check_medial_axis(scene: &Scene) -> Result<(), Error> {
         matches!(
             kind,
             SiteKind::Polygon { .. }
+                | SiteKind::Segment { .. }
+                | SiteKind::Polyline { .. }
+                | SiteKind::Arc { .. }
                 | SiteKind::Bezier { .. }
                 | SiteKind::Bspline { .. }
                 | SiteKind::Algebraic { .. }
@@ -200,9 +204,8 @@ fn check_medial_axis(scene: &Scene) -> Result<(), Error> {
     Err(Error::scene(
         "mode",
         "'medial_axis' keeps the diagram inside the regions that closed sites bound \
-         (polygons, closed curves), and this scene has none: its medial axis is empty \
-         (a closed polyline is not a region: give it as a polygon); use mode 'voronoi' \
-         or 'complex'",
+         (polygons, closed curves, chains of segments and arcs that close up), and this \
+         scene has none: its medial axis is empty; use mode 'voronoi' or 'complex'",
     ))
 }
 

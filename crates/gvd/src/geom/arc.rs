@@ -6,7 +6,7 @@
 //! is refused when the scene is read).
 
 use super::Point;
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Sweeps within this many radians of a whole turn are the full circle.
 pub const FULL_TURN_TOLERANCE: f64 = 1e-12;
@@ -22,6 +22,45 @@ pub fn partial_sweep(start: f64, end: f64) -> Option<f64> {
 /// circle.
 pub fn sweep(start: f64, end: f64) -> f64 {
     partial_sweep(start, end).unwrap_or(TAU)
+}
+
+/// Whether the ray from `q` towards +x crosses the counter-clockwise arc of the circle
+/// `(center, radius)` from `ends[0]` (at angle `start`) through `sweep` to `ends[1]` an
+/// odd number of times. The arc is cut into y-monotone pieces at its top and bottom;
+/// a piece counts under the even-odd rule of `ring::even_odd_contains` (one end strictly
+/// above `q`, the other not, its crossing right of `q`), so arcs and segments that share
+/// ends count consistently. `ends` are the arc's end points as the caller's other
+/// boundary pieces know them.
+pub fn ray_crosses_odd(
+    center: Point,
+    radius: f64,
+    start: f64,
+    sweep: f64,
+    ends: [Point; 2],
+    q: Point,
+) -> bool {
+    let at = |a: f64| center + Point::new(a.cos(), a.sin()) * radius;
+    // the angles of the top and bottom within the sweep, in order
+    let first = ((start - FRAC_PI_2) / PI).floor() + 1.0;
+    let mut cuts = vec![(start, ends[0])];
+    let mut k = first;
+    while FRAC_PI_2 + k * PI < start + sweep {
+        let a = FRAC_PI_2 + k * PI;
+        cuts.push((a, at(a)));
+        k += 1.0;
+    }
+    cuts.push((start + sweep, ends[1]));
+    let mut odd = false;
+    for w in cuts.windows(2) {
+        let ((a0, p0), (a1, p1)) = (w[0], w[1]);
+        if (p0.y > q.y) != (p1.y > q.y) {
+            let dy = q.y - center.y;
+            let half = (radius * radius - dy * dy).max(0.0).sqrt();
+            let x = center.x + half.copysign((0.5 * (a0 + a1)).cos());
+            odd ^= q.x < x;
+        }
+    }
+    odd
 }
 
 /// An arc of a circle: centre, radius, start angle and counter-clockwise sweep in
@@ -79,6 +118,29 @@ impl Arc {
 
 #[cfg(test)]
 mod tests {
+    use crate::geom::ring::even_odd_contains;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The ray test agrees with the even-odd rule on a fine polyline of the arc,
+        /// closed by its chord, away from the arc and the chord.
+        #[test]
+        fn ray_test_matches_a_fine_polyline(start in -7.0..7.0f64, sweep in 0.01..6.2f64,
+                                            qx in -2.0..2.0f64, qy in -2.0..2.0f64) {
+            let (c, r) = (Point::new(0.1, -0.2), 1.3);
+            let at = |a: f64| c + Point::new(a.cos(), a.sin()) * r;
+            let n = 20_000;
+            let ring: Vec<Point> = (0..=n).map(|k| at(start + sweep * k as f64 / n as f64)).collect();
+            let q = Point::new(qx, qy);
+            let chord = crate::geom::segment_distance(q, ring[0], ring[n]);
+            prop_assume!((q.dist(c) - r).abs() > 1e-3 && chord > 1e-3);
+            let ends = [ring[0], ring[n]];
+            let chord_crosses = (ends[1].y > q.y) != (ends[0].y > q.y)
+                && q.x < ends[1].x + (q.y - ends[1].y) * (ends[0].x - ends[1].x) / (ends[0].y - ends[1].y);
+            let ours = ray_crosses_odd(c, r, start, sweep, ends, q) ^ chord_crosses;
+            prop_assert_eq!(ours, even_odd_contains(&ring, q));
+        }
+    }
     use super::*;
 
     #[test]

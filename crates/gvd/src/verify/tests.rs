@@ -1,7 +1,7 @@
 use super::report::fmt_g3;
-use crate::geom::Aabb;
 use super::*;
 use crate::complex::{smallvec, Edge, Vertex};
+use crate::geom::Aabb;
 use crate::scene::{Equation, Metric, Site, SiteKind};
 
 const EPS: f64 = 1e-3;

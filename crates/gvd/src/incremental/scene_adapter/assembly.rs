@@ -4,12 +4,13 @@
 
 use super::phases::Phases;
 use super::Generators;
-use crate::complex::{Edge, Generator, SmallVec, Vertex, VoronoiComplex};
+use crate::complex::{BisectorPiece, Edge, Generator, SmallVec, Vertex, VoronoiComplex};
 use crate::geom::{Aabb, Point};
 use crate::incremental::segments_arcs::{joints, Gen, RawEdge, RawVertex, SegmentDiagram};
 use crate::par::{filter_map_range, join, map_range};
 use crate::scene::{Mode, Scene};
 use crate::Error;
+use rustc_hash::FxHashMap;
 
 /// An output edge before it is drawn: its kept edges in order (a range of the
 /// walk's links) and its end vertices (`None` for a closed loop). Its labels are its
@@ -209,7 +210,11 @@ fn chain_edges(
     (chains, links)
 }
 
-/// The complex of `diagram` (the diagram of `g`'s generators) in the scene's mode.
+/// The complex of `diagram` (the diagram of `g`'s generators) in the scene's mode, in
+/// four phases: the raw graph with its tangent joints contracted and its zero-length
+/// edges merged ([`merge_raw`]); the labels and the kept edges ([`keep_edges`]); the
+/// chains of kept edges, drawn, kept by the insides and clipped ([`Drawing::clip`]);
+/// and the output edges and vertices, numbered in order ([`number`]).
 pub(super) fn assemble(
     g: &Generators,
     scene: &Scene,
@@ -219,6 +224,56 @@ pub(super) fn assemble(
 ) -> Result<VoronoiComplex, Error> {
     let mode = scene.mode();
     let tol = scene.epsilon() / 4.0;
+    let merged = merge_raw(g, scene, diagram, tol, phases)?;
+    let (labels, kept, incident) = keep_edges(g, mode, &merged);
+    let Merged {
+        joints,
+        raw_vertices,
+        raw_edges,
+        root,
+    } = merged;
+    drop((raw_edges, root));
+    // Where an edge ends on a site (a corner), the two distance fields are not
+    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
+    let domain = scene.domain();
+    let hair = 1e-9 * domain.longest_side();
+    let (chains, links) = chain_edges(&kept, &incident, &labels, |v| raw_vertices[v].t <= hair);
+    let drawing = Drawing {
+        g,
+        mode,
+        diagram,
+        tol,
+        hair,
+        domain,
+        bisectors,
+        joints: &joints,
+        raw_vertices: &raw_vertices,
+        kept: &kept,
+        links: &links,
+    };
+    let clipped = map_range(chains.len(), 1 << 10, |c| drawing.clip(&chains[c]));
+    Ok(number(clipped, &raw_vertices, &labels, &domain))
+}
+
+/// The raw graph with the tips of its tangent joints contracted and the vertices joined
+/// by zero-length edges merged (`root[v]` is the vertex `v` merged into).
+struct Merged {
+    joints: FxHashMap<u32, joints::Joint>,
+    raw_vertices: Vec<RawVertex>,
+    raw_edges: Vec<RawEdge>,
+    root: Vec<u32>,
+}
+
+/// Phase 1: the engine's raw graph (edges shown in the mode, and those at tangent
+/// joints), the joints' tips contracted, zero-length edges merged.
+fn merge_raw(
+    g: &Generators,
+    scene: &Scene,
+    diagram: &SegmentDiagram,
+    tol: f64,
+    phases: &mut Phases,
+) -> Result<Merged, Error> {
+    let mode = scene.mode();
     let joints = joints::tangent_joints(&g.points, &g.segments, &g.arcs);
     let at_joint = |x: Gen| matches!(x, Gen::Point(p) if joints.contains_key(&p));
     let (mut raw_vertices, mut raw_edges) = diagram.raw(tol, |a, b| {
@@ -245,16 +300,26 @@ pub(super) fn assemble(
         parent[a.max(b)] = a.min(b);
     }
     let root: Vec<u32> = (0..nv).map(|v| find(&mut parent, v) as u32).collect();
-    // The labels (sequential), side by side with the kept edges (shown, of positive
-    // length, a merged vertex at its root) and the edges around each vertex.
+    Ok(Merged {
+        joints,
+        raw_vertices,
+        raw_edges,
+        root,
+    })
+}
+
+/// Phase 2: the labels (sequential), side by side with the kept edges (shown, of
+/// positive length, a merged vertex at its root) and the edges around each vertex.
+fn keep_edges(g: &Generators, mode: Mode, m: &Merged) -> (Labels, Vec<Kept>, Incident) {
+    let nv = m.raw_vertices.len();
     let (labels, (kept, incident)) = join(
-        || Labels::of(g, mode, &raw_vertices, &root),
+        || Labels::of(g, mode, &m.raw_vertices, &m.root),
         || {
-            let kept: Vec<Kept> = filter_map_range(raw_edges.len(), 1 << 12, |k| {
-                let e = &raw_edges[k];
+            let kept: Vec<Kept> = filter_map_range(m.raw_edges.len(), 1 << 12, |k| {
+                let e = &m.raw_edges[k];
                 (!e.zero && g.shown(e.gens[0], e.gens[1], mode)).then(|| Kept {
                     gens: e.gens,
-                    ends: e.ends.map(|v| root[v]),
+                    ends: e.ends.map(|v| m.root[v]),
                     half: e.half,
                     on_normal: e.on_normal,
                 })
@@ -263,31 +328,50 @@ pub(super) fn assemble(
             (kept, incident)
         },
     );
-    drop(raw_edges);
-    // Insides of polygons, clipping, output indices.
-    let domain = scene.domain();
-    // Where an edge ends on a site (a corner), the two distance fields are not
-    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
-    let hair = 1e-9 * domain.longest_side();
-    let (chains, links) = chain_edges(&kept, &incident, &labels, |v| raw_vertices[v].t <= hair);
-    // A chain's polyline: its edges' polylines in order (each projected onto its
-    // tangent joint's normal if it lies on one), from their ends' merged vertices, with
-    // the stretches they make.
-    let draw = |chain: &Chain| {
+    (labels, kept, incident)
+}
+
+/// A clipped piece of a chain: its polyline, whether the domain cut its start and its
+/// end, and its exact bisector (empty unless asked for).
+type Piece = (SmallVec<[Point; 2]>, bool, bool, Vec<BisectorPiece>);
+
+/// A chain kept by the insides: its clipped pieces, its end vertices and its labels.
+type Clipped = (Vec<Piece>, Option<usize>, Option<usize>, [Generator; 2]);
+
+/// What phase 3 reads to draw and clip a chain.
+struct Drawing<'a> {
+    g: &'a Generators,
+    mode: Mode,
+    diagram: &'a SegmentDiagram,
+    tol: f64,
+    hair: f64,
+    domain: Aabb,
+    bisectors: bool,
+    joints: &'a FxHashMap<u32, joints::Joint>,
+    raw_vertices: &'a [RawVertex],
+    kept: &'a [Kept],
+    links: &'a [Link],
+}
+
+impl Drawing<'_> {
+    /// A chain's polyline: its edges' polylines in order (each projected onto its
+    /// tangent joint's normal if it lies on one), from their ends' merged vertices, with
+    /// the stretches they make.
+    fn draw(&self, chain: &Chain) -> (SmallVec<[Point; 2]>, Vec<Stretch>) {
         // Inline for a straight edge: no heap allocation.
         let mut points: SmallVec<[Point; 2]> = SmallVec::new();
         let (mut stretches, mut edge) = (Vec::new(), Vec::new());
-        for &(k, forward) in &links[chain.links.clone()] {
-            let e = &kept[k];
+        for &(k, forward) in &self.links[chain.links.clone()] {
+            let e = &self.kept[k];
             edge.clear();
-            diagram.polyline(e.half, tol, &mut edge);
+            self.diagram.polyline(e.half, self.tol, &mut edge);
             if let Some(p) = e.on_normal {
-                let joint = &joints[&p];
+                let joint = &self.joints[&p];
                 edge.iter_mut().for_each(|q| *q = joint.onto(*q));
             }
             let last = edge.len() - 1;
-            edge[0] = raw_vertices[e.ends[0] as usize].at;
-            edge[last] = raw_vertices[e.ends[1] as usize].at;
+            edge[0] = self.raw_vertices[e.ends[0] as usize].at;
+            edge[last] = self.raw_vertices[e.ends[1] as usize].at;
             if !forward {
                 edge.reverse();
             }
@@ -302,51 +386,47 @@ pub(super) fn assemble(
             points.push(points[0]);
         }
         (points, stretches)
-    };
-    let mut out = VoronoiComplex::default();
-    // Output vertices are numbered in the order the edges first meet them; `shown`
-    // lists their raw vertices in that order.
-    let mut out_index: Vec<Option<usize>> = vec![None; nv];
-    let mut shown: Vec<usize> = Vec::new();
-    let mut vertex_out = |v: usize| -> Option<usize> {
-        domain.contains(raw_vertices[v].at).then(|| {
-            *out_index[v].get_or_insert_with(|| {
-                shown.push(v);
-                shown.len() - 1
-            })
-        })
-    };
-    let pull = |points: &mut [Point], at_start: bool| {
+    }
+
+    /// Moves a polyline's first (or last) point a hair towards the next one.
+    fn pull(&self, points: &mut [Point], at_start: bool) {
         let n = points.len();
         let (end, next) = if at_start { (0, 1) } else { (n - 1, n - 2) };
         let (p, q) = (points[end], points[next]);
         let len = p.dist(q);
         if len > 0.0 {
-            points[end] = p.lerp(q, (hair / len).min(0.5));
+            points[end] = p.lerp(q, (self.hair / len).min(0.5));
         }
-    };
-    // Drawn, pulled, kept by the insides, clipped: chain by chain (in parallel), then
-    // numbered in order.
-    let clip = |c: usize| {
-        let Chain { from, to, .. } = chains[c];
-        let first = &kept[links[chains[c].links.start].0];
+    }
+
+    /// Phase 3, one chain: drawn, pulled off the sites it ends on, kept by the insides
+    /// (`None` when the mode leaves it out), clipped to the domain.
+    fn clip(&self, chain: &Chain) -> Option<Clipped> {
+        let (g, mode, domain, hair) = (self.g, self.mode, &self.domain, self.hair);
+        let Chain { from, to, .. } = *chain;
+        let first = &self.kept[self.links[chain.links.start].0];
         let sites = first.gens.map(|x| g.label(x, mode));
-        let (mut points, stretches) = draw(&chains[c]);
-        if from.is_some_and(|v| raw_vertices[v].t <= hair) {
-            pull(&mut points, true);
+        let (mut points, stretches) = self.draw(chain);
+        if from.is_some_and(|v| self.raw_vertices[v].t <= hair) {
+            self.pull(&mut points, true);
         }
-        if to.is_some_and(|v| raw_vertices[v].t <= hair) {
-            pull(&mut points, false);
+        if to.is_some_and(|v| self.raw_vertices[v].t <= hair) {
+            self.pull(&mut points, false);
         }
         let mid = (points.len() - 1) / 2;
-        let inside = g.inside_polygons(points[mid].lerp(points[mid + 1], 0.5));
-        (inside == (mode == Mode::MedialAxis)).then(|| {
+        let probe = points[mid].lerp(points[mid + 1], 0.5);
+        let keep = if mode == Mode::MedialAxis {
+            g.inside_region(probe)
+        } else {
+            !g.inside_polygons(probe)
+        };
+        keep.then(|| {
             // Most chains lie wholly inside the domain: kept as they are.
             let whole = points.len() >= 2 && points.iter().all(|&p| domain.contains(p));
             let pieces = if whole {
                 vec![(points, false, false, 0)]
             } else {
-                let pieces = clip_polyline(&points, &domain).into_iter();
+                let pieces = clip_polyline(&points, domain).into_iter();
                 pieces
                     .map(|(p, s, e, f)| (SmallVec::from_vec(p), s, e, f))
                     .collect()
@@ -354,7 +434,7 @@ pub(super) fn assemble(
             let pieces = pieces
                 .into_iter()
                 .map(|(piece, start_cut, end_cut, first)| {
-                    let form = if bisectors {
+                    let form = if self.bisectors {
                         g.bisector(&piece, first, &stretches, hair)
                     } else {
                         Vec::new()
@@ -364,8 +444,29 @@ pub(super) fn assemble(
                 .collect::<Vec<_>>();
             (pieces, from, to, sites)
         })
+    }
+}
+
+/// Phase 4: the output edges in chain order, and the vertices numbered in the order the
+/// edges first meet them (those inside the domain).
+fn number(
+    clipped: Vec<Option<Clipped>>,
+    raw_vertices: &[RawVertex],
+    labels: &Labels,
+    domain: &Aabb,
+) -> VoronoiComplex {
+    let mut out = VoronoiComplex::default();
+    // `shown` lists the output vertices' raw vertices in order.
+    let mut out_index: Vec<Option<usize>> = vec![None; raw_vertices.len()];
+    let mut shown: Vec<usize> = Vec::new();
+    let mut vertex_out = |v: usize| -> Option<usize> {
+        domain.contains(raw_vertices[v].at).then(|| {
+            *out_index[v].get_or_insert_with(|| {
+                shown.push(v);
+                shown.len() - 1
+            })
+        })
     };
-    let clipped = map_range(chains.len(), 1 << 10, clip);
     out.edges.reserve(clipped.len());
     for (mut pieces, from, to, sites) in clipped.into_iter().flatten() {
         let closed_loop = from.is_none();
@@ -411,7 +512,7 @@ pub(super) fn assemble(
             sites,
         }
     });
-    Ok(out)
+    out
 }
 
 /// The pieces of a polyline inside the closed box `b`, each with whether its start and

@@ -26,8 +26,9 @@ use super::segments_arcs::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
-use crate::geom::arc::partial_sweep;
+use crate::geom::arc::{partial_sweep, ray_crosses_odd};
 use crate::geom::grid::SparseGrid;
+use crate::geom::ring::even_odd_contains;
 use crate::geom::Point;
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::Error;
@@ -80,83 +81,157 @@ struct Generators {
     lonely: Vec<u32>,
     /// Closed rings of polygon sites (for insides).
     rings: Vec<Vec<Point>>,
+    /// In `medial_axis` mode, the segment and arc generators of open sites (segments,
+    /// polylines, arcs) that close up into loops: they bound regions too.
+    loop_segments: Vec<u32>,
+    loop_arcs: Vec<u32>,
     /// The site of `point_owner` and of `segment_owner`, compactly.
     point_site: Vec<u32>,
     segment_site: Vec<u32>,
 }
 
-impl Generators {
-    fn of(scene: &Scene) -> Generators {
-        let mut g = Generators {
-            points: Vec::new(),
-            point_owner: Vec::new(),
+/// Room for every point of every site of `scene` (shared ones counted once each).
+fn room(scene: &Scene) -> usize {
+    scene
+        .sites()
+        .iter()
+        .map(|s| match &s.kind {
+            SiteKind::Polyline { points } => points.len(),
+            SiteKind::Polygon { rings } => rings.iter().map(Vec::len).sum(),
+            SiteKind::Point { .. } => 1,
+            _ => 2,
+        })
+        .sum()
+}
+
+/// [`Generators`] under construction, with the index of its points by their bits.
+struct GeneratorBuilder {
+    g: Generators,
+    index: FxHashMap<(u64, u64), u32>,
+    /// Scratch: a chain's point ids.
+    ids: Vec<u32>,
+}
+
+impl GeneratorBuilder {
+    fn with_room(most: usize) -> GeneratorBuilder {
+        let g = Generators {
+            points: Vec::with_capacity(most),
+            point_owner: Vec::with_capacity(most),
             also: FxHashMap::default(),
-            segments: Vec::new(),
-            segment_owner: Vec::new(),
+            segments: Vec::with_capacity(most),
+            segment_owner: Vec::with_capacity(most),
             arcs: Vec::new(),
             arc_owner: Vec::new(),
             lonely: Vec::new(),
             rings: Vec::new(),
+            loop_segments: Vec::new(),
+            loop_arcs: Vec::new(),
             point_site: Vec::new(),
             segment_site: Vec::new(),
         };
-        // Room for every point of every site (shared ones are counted once each).
-        let most: usize = scene
-            .sites()
-            .iter()
-            .map(|s| match &s.kind {
-                SiteKind::Polyline { points } => points.len(),
-                SiteKind::Polygon { rings } => rings.iter().map(Vec::len).sum(),
-                SiteKind::Point { .. } => 1,
-                _ => 2,
-            })
-            .sum();
-        g.points.reserve(most);
-        g.point_owner.reserve(most);
-        g.segments.reserve(most);
-        g.segment_owner.reserve(most);
-        let mut index: FxHashMap<(u64, u64), u32> = FxHashMap::default();
+        let mut index = FxHashMap::default();
         index.reserve(most);
-        let mut point = |g: &mut Generators, p: Point, owner: (usize, Option<usize>)| {
-            // −0.0 and 0.0 are the same point.
-            let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
-            match index.get(&key) {
-                Some(&id) => {
-                    g.share(id, owner);
-                    id
-                }
-                None => {
-                    g.points.push(p);
-                    g.point_owner.push(owner);
-                    let id = g.points.len() as u32 - 1;
-                    index.insert(key, id);
-                    id
-                }
+        GeneratorBuilder {
+            g,
+            index,
+            ids: Vec::new(),
+        }
+    }
+
+    /// The point generator at `p` (a new one, or `owner` shares an existing one).
+    fn point(&mut self, p: Point, owner: (usize, Option<usize>)) -> u32 {
+        // −0.0 and 0.0 are the same point.
+        let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+        match self.index.get(&key) {
+            Some(&id) => {
+                self.g.share(id, owner);
+                id
             }
-        };
-        let mut ids: Vec<u32> = Vec::new();
-        let mut chain = |g: &mut Generators, site: usize, corner0: usize, pts: &[Point], closed| {
-            ids.clear();
-            for (k, &p) in pts.iter().enumerate() {
-                ids.push(point(g, p, (site, Some(corner0 + k))));
+            None => {
+                self.g.points.push(p);
+                self.g.point_owner.push(owner);
+                let id = self.g.points.len() as u32 - 1;
+                self.index.insert(key, id);
+                id
             }
-            let n = ids.len();
-            let edges = if closed { n } else { n - 1 };
-            for k in 0..edges {
-                let (a, b) = (ids[k], ids[(k + 1) % n]);
-                if a != b {
-                    g.segments.push([a, b]);
-                    g.segment_owner.push((site, corner0 + k));
+        }
+    }
+
+    /// The corners of a chain of site `site` (numbered from `corner0`) and its edges of
+    /// positive length; `closed` joins the last corner to the first.
+    fn chain(&mut self, site: usize, corner0: usize, pts: &[Point], closed: bool) {
+        let mut ids = std::mem::take(&mut self.ids);
+        ids.clear();
+        for (k, &p) in pts.iter().enumerate() {
+            ids.push(self.point(p, (site, Some(corner0 + k))));
+        }
+        let n = ids.len();
+        let edges = if closed { n } else { n - 1 };
+        for k in 0..edges {
+            let (a, b) = (ids[k], ids[(k + 1) % n]);
+            if a != b {
+                self.g.segments.push([a, b]);
+                self.g.segment_owner.push((site, corner0 + k));
+            }
+        }
+        self.ids = ids;
+    }
+
+    /// The arcs, their ends snapped onto the points within `snap_tol`: an arc's ends are
+    /// computed (centre + radius · direction), so they may miss a segment's or another
+    /// arc's end by an ulp. A point shared by several sites is named by the first of
+    /// them in the scene.
+    fn arcs(&mut self, arc_sites: Vec<(usize, ArcSpec)>, snap_tol: f64) {
+        let mut snap = Snap::new(snap_tol);
+        if !arc_sites.is_empty() {
+            snap.insert_all(&self.g.points);
+        }
+        for (i, mut arc) in arc_sites {
+            arc.ends = [0, 1].map(|k| {
+                let end = arc.end_point(k);
+                match snap.find(end) {
+                    Some(id) => {
+                        self.g.share(id, (i, Some(k)));
+                        id
+                    }
+                    None => {
+                        let id = self.point(end, (i, Some(k)));
+                        snap.insert(end, id);
+                        id
+                    }
                 }
+            });
+            self.g.arcs.push(arc);
+            self.g.arc_owner.push(i);
+        }
+    }
+
+    /// Point sites, last, so that a corner keeps its feature label; a point site on a
+    /// corner is the same generator.
+    fn point_sites(&mut self, sites: Vec<(usize, Point)>) {
+        for (i, at) in sites {
+            let before = self.g.points.len();
+            let id = self.point(at, (i, None));
+            if id as usize == before {
+                self.g.lonely.push(id);
             }
-        };
+        }
+    }
+}
+
+impl Generators {
+    /// The generators of `scene`'s points, segments, polylines, polygons and arcs: each
+    /// distinct point once (chain corners first, then arc ends snapped onto them, then
+    /// point sites), each edge of positive length, each arc short of a full circle.
+    fn of(scene: &Scene) -> Generators {
+        let mut b = GeneratorBuilder::with_room(room(scene));
         let mut points_sites = Vec::new();
         let mut arc_sites = Vec::new();
         for (i, site) in scene.sites().iter().enumerate() {
             match &site.kind {
                 SiteKind::Point { at, .. } => points_sites.push((i, *at)),
-                SiteKind::Segment { from, to } => chain(&mut g, i, 0, &[*from, *to], false),
-                SiteKind::Polyline { points } => chain(&mut g, i, 0, points, false),
+                SiteKind::Segment { from, to } => b.chain(i, 0, &[*from, *to], false),
+                SiteKind::Polyline { points } => b.chain(i, 0, points, false),
                 &SiteKind::Arc {
                     center,
                     radius,
@@ -177,52 +252,76 @@ impl Generators {
                 SiteKind::Polygon { rings } => {
                     let mut corner = 0;
                     for ring in rings {
-                        chain(&mut g, i, corner, ring, true);
+                        b.chain(i, corner, ring, true);
                         corner += ring.len();
-                        g.rings.push(ring.clone());
+                        b.g.rings.push(ring.clone());
                     }
                 }
                 _ => {}
             }
         }
-        // An arc's ends are computed (centre + radius · direction), so they may miss a
-        // segment's or another arc's end by an ulp: within 1e-12 of the domain they are
-        // that point. A point shared by several sites is named by the first of them in
-        // the scene.
-        let mut snap = Snap::new(1e-12 * scene.domain().longest_side());
-        if !arc_sites.is_empty() {
-            snap.insert_all(&g.points);
-        }
-        for (i, mut arc) in arc_sites {
-            arc.ends = [0, 1].map(|k| {
-                let end = arc.end_point(k);
-                match snap.find(end) {
-                    Some(id) => {
-                        g.share(id, (i, Some(k)));
-                        id
-                    }
-                    None => {
-                        let id = point(&mut g, end, (i, Some(k)));
-                        snap.insert(end, id);
-                        id
-                    }
-                }
-            });
-            g.arcs.push(arc);
-            g.arc_owner.push(i);
-        }
-        // Point sites last, so that a corner keeps its feature label; a point site on
-        // a corner is the same generator.
-        for (i, at) in points_sites {
-            let before = g.points.len();
-            let id = point(&mut g, at, (i, None));
-            if id as usize == before {
-                g.lonely.push(id);
-            }
-        }
+        b.arcs(arc_sites, 1e-12 * scene.domain().longest_side());
+        b.point_sites(points_sites);
+        let mut g = b.g;
         g.point_site = g.point_owner.iter().map(|o| o.0 as u32).collect();
         g.segment_site = g.segment_owner.iter().map(|o| o.0 as u32).collect();
+        if scene.mode() == Mode::MedialAxis {
+            g.find_loops(scene);
+        }
         g
+    }
+
+    /// The segment and arc generators of open sites that lie on closed loops: the
+    /// 2-core of the graph they make on the point generators (generators with an end
+    /// that no other one shares are peeled off until none is left).
+    fn find_loops(&mut self, scene: &Scene) {
+        let open_segments: Vec<u32> = (0..self.segments.len() as u32)
+            .filter(|&k| {
+                let site = self.segment_owner[k as usize].0;
+                !matches!(scene.sites()[site].kind, SiteKind::Polygon { .. })
+            })
+            .collect();
+        let ends = |e: usize| -> [u32; 2] {
+            if e < open_segments.len() {
+                self.segments[open_segments[e] as usize]
+            } else {
+                self.arcs[e - open_segments.len()].ends
+            }
+        };
+        let count = open_segments.len() + self.arcs.len();
+        let mut degree = vec![0u32; self.points.len()];
+        let mut at: FxHashMap<u32, Vec<usize>> = FxHashMap::default();
+        for e in 0..count {
+            for p in ends(e) {
+                degree[p as usize] += 1;
+                at.entry(p).or_default().push(e);
+            }
+        }
+        let mut alive = vec![true; count];
+        let mut free: Vec<u32> = (0..self.points.len() as u32)
+            .filter(|&p| degree[p as usize] == 1)
+            .collect();
+        while let Some(p) = free.pop() {
+            for &e in at.get(&p).into_iter().flatten() {
+                if alive[e] {
+                    alive[e] = false;
+                    for q in ends(e) {
+                        degree[q as usize] -= 1;
+                        if degree[q as usize] == 1 {
+                            free.push(q);
+                        }
+                    }
+                }
+            }
+        }
+        self.loop_segments = (0..open_segments.len())
+            .filter(|&e| alive[e])
+            .map(|e| open_segments[e])
+            .collect();
+        self.loop_arcs = (open_segments.len()..count)
+            .filter(|&e| alive[e])
+            .map(|e| (e - open_segments.len()) as u32)
+            .collect();
     }
 
     /// Another owner of point `p`: it names the point if its site comes first.
@@ -394,20 +493,33 @@ impl Generators {
 
     /// Even-odd inside test against all polygon rings (boundary excluded).
     fn inside_polygons(&self, q: Point) -> bool {
-        let mut inside = false;
-        for ring in &self.rings {
-            let n = ring.len();
-            for k in 0..n {
-                let (a, b) = (ring[k], ring[(k + 1) % n]);
-                if (a.y > q.y) != (b.y > q.y) {
-                    let x = a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x);
-                    if q.x < x {
-                        inside = !inside;
-                    }
-                }
-            }
-        }
-        inside
+        self.rings
+            .iter()
+            .filter(|r| even_odd_contains(r, q))
+            .count()
+            % 2
+            == 1
+    }
+
+    /// Whether `q` lies in the `medial_axis` region: the even-odd interior of the
+    /// polygons' rings and of the loops of open sites together.
+    fn inside_region(&self, q: Point) -> bool {
+        let segment_crosses = |&k: &u32| {
+            let [a, b] = self.segments[k as usize].map(|p| self.points[p as usize]);
+            (a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y)
+        };
+        let arc_crosses = |&k: &u32| {
+            let arc = &self.arcs[k as usize];
+            let ends = arc.ends.map(|p| self.points[p as usize]);
+            ray_crosses_odd(arc.c, arc.r, arc.start, arc.span, ends, q)
+        };
+        let loops = self
+            .loop_segments
+            .iter()
+            .filter(|k| segment_crosses(k))
+            .count()
+            + self.loop_arcs.iter().filter(|k| arc_crosses(k)).count();
+        self.inside_polygons(q) ^ (loops % 2 == 1)
     }
 }
 
@@ -514,6 +626,15 @@ pub fn scene_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, E
     }
     let mut phases = Phases::default();
     let g = Generators::of(scene);
+    let bounds_nothing = g.rings.is_empty() && g.loop_segments.is_empty() && g.loop_arcs.is_empty();
+    if scene.mode() == Mode::MedialAxis && bounds_nothing {
+        return Err(Error::scene(
+            "mode",
+            "'medial_axis' keeps the diagram inside the regions that closed sites bound, and \
+             no polygon is given and no chain of segments, polylines and arcs closes up (their \
+             ends must meet exactly): the medial axis is empty; use mode 'voronoi' or 'complex'",
+        ));
+    }
     if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely) {
         return Err(conflict_error(&g, c));
     }

@@ -130,6 +130,7 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
                 message: "the incremental engine computes Euclidean points, segments, arcs short of a full circle, polylines and polygons (so far)".into(),
             });
         }
+        (Engine::Auto, None) => check_one_engine_takes_all(scene)?,
         _ => {}
     }
     if scene.mode() == Mode::MedialAxis {
@@ -156,6 +157,56 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         complex: out.complex,
         boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
     })
+}
+
+/// Whether the subdivision engine has a distance field for sites of this kind.
+fn subdivision_supports(kind: &SiteKind) -> bool {
+    match kind {
+        SiteKind::Point { .. }
+        | SiteKind::Circle { .. }
+        | SiteKind::Ellipse { .. }
+        | SiteKind::Field { .. }
+        | SiteKind::ImplicitField { .. }
+        | SiteKind::Algebraic { .. } => true,
+        SiteKind::Segment { .. }
+        | SiteKind::Arc { .. }
+        | SiteKind::Polyline { .. }
+        | SiteKind::Polygon { .. }
+        | SiteKind::Bezier { .. }
+        | SiteKind::Bspline { .. } => false,
+    }
+}
+
+/// With `Engine::Auto` on a scene the incremental engine cannot take: refuses, naming
+/// the real cause, a site that no engine computes, or a mix of kinds that no single
+/// engine computes (instead of the first site the subdivision engine lacks).
+fn check_one_engine_takes_all(scene: &Scene) -> Result<(), Error> {
+    let sites = scene.sites();
+    let Some(lacking) = sites.iter().position(|s| !subdivision_supports(&s.kind)) else {
+        return Ok(());
+    };
+    let unsupported = |i: usize, message: String| Error::Unsupported {
+        site: i,
+        kind: sites[i].kind.name().to_string(),
+        message,
+    };
+    let by_none = |k: &SiteKind| !subdivision_supports(k) && !incremental::supports_site(k);
+    if let Some(i) = sites.iter().position(|s| by_none(&s.kind)) {
+        return Err(unsupported(i, "no engine computes this kind yet".into()));
+    }
+    let other = sites
+        .iter()
+        .position(|s| !incremental::supports_site(&s.kind))
+        .unwrap_or(0);
+    Err(unsupported(
+        lacking,
+        format!(
+            "the incremental engine takes this site but not site {other} (kind '{}'), \
+             the subdivision engine takes that one but not this: no engine computes the \
+             two in one scene yet",
+            sites[other].kind.name()
+        ),
+    ))
 }
 
 /// Refuses `medial_axis` mode where it has no meaning or no engine. The mode keeps the

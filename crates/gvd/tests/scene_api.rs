@@ -147,3 +147,28 @@ fn tangent_circles_are_accepted_even_where_rounding_makes_them_overlap() {
         })
     ));
 }
+
+/// A scene that no engine computes is refused naming the site that is the real cause.
+#[test]
+fn refusals_of_mixed_scenes_name_the_real_cause() {
+    let refused = |sites: Vec<Site>| {
+        let scene = Scene::new(domain(), 1e-3, Mode::Voronoi, sites).unwrap();
+        match gvd::compute(&scene, &gvd::Options::default()) {
+            Err(Error::Unsupported {
+                site,
+                kind,
+                message,
+            }) => (site, kind, message),
+            other => panic!("expected a refusal, got {:?}", other.map(|d| d.edges.len())),
+        }
+    };
+    let bezier = Site::bezier([[0.5, 0.5], [1.0, 1.5], [1.5, 0.5]], None);
+    let (site, kind, message) = refused(vec![Site::segment([-1.0, -1.0], [0.0, -1.0]), bezier]);
+    assert_eq!((site, kind.as_str()), (1, "bezier"), "{message}");
+    let (site, kind, message) = refused(vec![
+        Site::segment([-1.0, -1.0], [0.0, -1.0]),
+        Site::circle([1.0, 1.0], 0.5),
+    ]);
+    assert_eq!((site, kind.as_str()), (0, "segment"));
+    assert!(message.contains("site 1 (kind 'circle')"), "{message}");
+}

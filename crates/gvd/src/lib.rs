@@ -33,6 +33,7 @@
 #![warn(clippy::print_stdout, clippy::print_stderr)]
 
 mod cells;
+mod clearance;
 pub mod complex;
 mod compute;
 mod error;

@@ -342,6 +342,27 @@ impl PyDiagram {
         py.detach(|| gvd::io::geojson::write_diagram(&self.scene, &self.complex))
     }
 
+    /// The diagram as WKT: a `MULTIPOINT` of the vertices, a `MULTILINESTRING` of the
+    /// edges and a `MULTIPOLYGON` of the cells, one per line.
+    fn to_wkt(&self, py: Python<'_>) -> String {
+        py.detach(|| gvd::io::wkt::write_diagram(&self.complex))
+    }
+
+    /// The edges (the medial axis in `medial_axis` mode) as DXF `LINE` entities.
+    fn to_dxf(&self, py: Python<'_>) -> String {
+        py.detach(|| gvd::io::dxf::write_diagram(&self.complex))
+    }
+
+    /// The cells as shapely Polygons (with holes), in the order of `cell_sites`.
+    fn shapely_cells<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        slf.py().import("gvd.geometry")?.call_method1("cells", (slf,))
+    }
+
+    /// The edges as one shapely MultiLineString.
+    fn shapely_edges<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        slf.py().import("gvd.geometry")?.call_method1("edges", (slf,))
+    }
+
     /// A picture of the sites and the diagram (SVG text, `width` pixels wide).
     #[pyo3(signature = (width=800.0))]
     fn to_svg(&self, py: Python<'_>, width: f64) -> String {

@@ -76,6 +76,69 @@ impl PyOffset {
         PyList::new(py, arrays)
     }
 
+    /// The curves as GeoJSON LineStrings, arcs as chords within `tolerance` (default:
+    /// the scene's epsilon).
+    #[pyo3(signature = (tolerance=None))]
+    fn to_geojson(&self, tolerance: Option<f64>) -> String {
+        gvd::io::geojson::write_offset(&self.offset, tolerance.unwrap_or(self.scene.epsilon()))
+    }
+
+    /// The curves as DXF `LINE` and `ARC` entities (what CAM software opens).
+    fn to_dxf(&self) -> String {
+        gvd::io::dxf::write_offset(&self.offset)
+    }
+
+    /// A picture of the sites, the diagram's edges and the offset curves (SVG text).
+    #[pyo3(signature = (width=800.0))]
+    fn to_svg(&self, py: Python<'_>, width: f64) -> PyResult<String> {
+        let scene = self.scene.clone();
+        let opts = gvd::io::svg::SvgOptions {
+            width_px: width,
+            ..Default::default()
+        };
+        let complex = py
+            .detach(|| {
+                let scene = if scene.mode() == gvd::Mode::Voronoi {
+                    scene.as_ref().clone().with_mode(gvd::Mode::Complex)
+                } else {
+                    scene.as_ref().clone()
+                };
+                gvd::compute(&scene, &gvd::Options::default())
+            })
+            .map_err(crate::errors::to_py)?;
+        Ok(gvd::io::svg::render_offset_svg(
+            &self.scene,
+            &complex,
+            &self.offset,
+            &opts,
+        ))
+    }
+
+    /// Draws the curves with matplotlib into `ax` (new axes when None).
+    #[pyo3(signature = (ax=None, **kwargs))]
+    fn plot<'py>(
+        slf: &Bound<'py, Self>,
+        ax: Option<Bound<'py, PyAny>>,
+        kwargs: Option<&Bound<'py, pyo3::types::PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        slf.py()
+            .import("gvd.plot")?
+            .getattr("plot_offset")?
+            .call((slf, ax), kwargs)
+    }
+
+    /// The curves as shapely geometries: LinearRings for closed curves, LineStrings
+    /// for open ones, arcs as chords within `tolerance`.
+    #[pyo3(signature = (tolerance=None))]
+    fn to_shapely<'py>(
+        slf: &Bound<'py, Self>,
+        tolerance: Option<f64>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        slf.py()
+            .import("gvd.geometry")?
+            .call_method1("offsets", (slf, tolerance))
+    }
+
     /// The curves as JSON (`docs/SCENE_FORMAT.md`, "Offsets").
     fn to_json(&self) -> String {
         self.offset.to_json()

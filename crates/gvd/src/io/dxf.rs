@@ -3,7 +3,8 @@
 //! date and UUID libraries.
 //!
 //! In (the `ENTITIES` section): `POINT` becomes a point, `LINE` a segment, `ARC` an arc
-//! (degrees, counter-clockwise), `CIRCLE` a full-circle arc, `LWPOLYLINE` and
+//! (degrees, counter-clockwise), `CIRCLE` two half-circle arcs (arcs short of a
+//! whole turn are what the incremental engine computes), `LWPOLYLINE` and
 //! `POLYLINE` (with `VERTEX`es) a polygon when closed without bulges, otherwise their
 //! straight runs polylines and their bulged spans arcs: a bulge `b` on the span from
 //! `p` to `q` is the arc of included angle `4 atan b` (counter-clockwise for `b > 0`),
@@ -24,7 +25,7 @@ use crate::geom::Point;
 use crate::offset::{Offset, Primitive};
 use crate::scene::{Scene, Site, SiteKind};
 use std::collections::BTreeMap;
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 use std::fmt::Write;
 
 /// One entity: its type and its group codes with their values, in order.
@@ -261,12 +262,12 @@ pub fn read_scene(data: &[u8], options: &ReadOptions) -> Result<(Scene, Vec<Stri
         match e.kind.as_str() {
             "POINT" => push(Site::point(e.point(10, &origin)?)),
             "LINE" => push(Site::segment(e.point(10, &origin)?, e.point(11, &origin)?)),
-            "CIRCLE" => push(Site::arc(
-                e.point(10, &origin)?,
-                e.number(40).unwrap_or(f64::NAN),
-                0.0,
-                TAU,
-            )),
+            "CIRCLE" => {
+                // two half circles: the incremental engine takes arcs short of a turn
+                let (c, r) = (e.point(10, &origin)?, e.number(40).unwrap_or(f64::NAN));
+                push(Site::arc(c, r, 0.0, PI));
+                push(Site::arc(c, r, PI, TAU));
+            }
             "ARC" => {
                 let start = e.number(50).unwrap_or(f64::NAN);
                 let mut end = e.number(51).unwrap_or(f64::NAN);
@@ -470,12 +471,12 @@ mod tests {
             radius,
             start_angle,
             end_angle,
-        } = scene.sites()[4].kind
+        } = scene.sites()[5].kind
         else {
             panic!()
         };
         let ends = Arc::from_angles(center, radius, start_angle, end_angle).ends();
-        let SiteKind::Polyline { points } = &scene.sites()[5].kind else {
+        let SiteKind::Polyline { points } = &scene.sites()[6].kind else {
             panic!()
         };
         assert!(ends.contains(&points[0]), "{ends:?} {points:?}");

@@ -355,12 +355,16 @@ impl PyDiagram {
 
     /// The cells as shapely Polygons (with holes), in the order of `cell_sites`.
     fn shapely_cells<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
-        slf.py().import("gvd.geometry")?.call_method1("cells", (slf,))
+        slf.py()
+            .import("gvd.geometry")?
+            .call_method1("cells", (slf,))
     }
 
     /// The edges as one shapely MultiLineString.
     fn shapely_edges<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
-        slf.py().import("gvd.geometry")?.call_method1("edges", (slf,))
+        slf.py()
+            .import("gvd.geometry")?
+            .call_method1("edges", (slf,))
     }
 
     /// A picture of the sites and the diagram (SVG text, `width` pixels wide).

@@ -20,6 +20,8 @@ use scene::PyScene;
 /// Computes the diagram of `scene` (see `gvd.compute`, which also takes dicts, JSON
 /// text and paths).
 #[pyfunction]
+// the keyword arguments of the Python function
+#[allow(clippy::too_many_arguments)]
 #[pyo3(signature = (scene, engine="auto", *, parallel=true, max_box=None, max_boxes=None, max_points=None, bisectors=false))]
 fn compute(
     py: Python<'_>,

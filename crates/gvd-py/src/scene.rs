@@ -264,6 +264,8 @@ impl PyScene {
 
     /// The scene as JSON text (`docs/SCENE_FORMAT.md`), which `Scene.from_json` reads
     /// back; runs the checks between sites first.
+    // the Python method's name; `&mut` because the scene is built on first use
+    #[allow(clippy::wrong_self_convention)]
     fn to_json(&mut self, py: Python<'_>) -> PyResult<String> {
         let scene = self.scene()?;
         Ok(py.detach(|| gvd::io::json::write_scene(&scene)))
@@ -377,13 +379,15 @@ impl PyScene {
                 scale: scale.ok_or_else(|| missing("scale"))?,
                 weight: weight.unwrap_or(0.0),
             },
-            other => return Err(site_error(
-                index,
-                "metric.kind",
-                format!(
+            other => {
+                return Err(site_error(
+                    index,
+                    "metric.kind",
+                    format!(
                     "unknown metric '{other}' (known: euclidean, lp, anisotropic, power, moebius)"
                 ),
-            )),
+                ))
+            }
         };
         self.push(Ok(Site::point_with(at, metric)), id)
     }

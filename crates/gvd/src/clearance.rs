@@ -8,7 +8,10 @@ use crate::scene::{Metric, Scene, SiteKind};
 use crate::site::{DistanceField, SiteField};
 
 impl VoronoiComplex {
-    /// Every vertex's clearance in `scene` (see [`clearance`]).
+    /// Every vertex's clearance in `scene`: the distance to its first generator,
+    /// Euclidean for points, circles (`|q − c| − r`), segments, arcs, polylines and
+    /// polygons (and their corners and edges), the field's value for the other kinds,
+    /// NaN for Bézier and B-spline curves.
     pub fn clearances(&self, scene: &Scene) -> Vec<f64> {
         self.vertices
             .iter()

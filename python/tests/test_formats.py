@@ -156,3 +156,32 @@ def test_offset_against_shapely_buffer():
     theirs = shapely.union(shapely.LineString([(-1, 0), (1, 0)]).buffer(0.4, 256), shapely.Point(0, 2).buffer(0.4, 256))
     assert ours.symmetric_difference(theirs).area < 1e-3
     assert len(off) == 2 and all(off.closed)
+
+
+def test_a_country_outline_medial_axis(repo):
+    """The shipped GeoJSON country (Natural Earth): its medial axis verifies, and every
+    edge lies inside the outline, read back through shapely."""
+    shapely = pytest.importorskip("shapely")
+    from shapely.geometry import shape
+
+    path = repo / "examples" / "scenes" / "switzerland.geojson"
+    scene = gvd.read(path)
+    assert scene.mode == "medial_axis" and scene.kinds() == ["polygon"]
+    d = gvd.compute(scene)
+    assert d.verify(grid=256)
+    outline = shape(json.loads(path.read_text())["features"][0]["geometry"])
+    edges = [shape(f["geometry"]) for f in json.loads(d.to_geojson())["features"]
+             if f["properties"]["type"] == "edge"]
+    assert len(edges) == len(d.edge_sites) > 100
+    assert all(outline.buffer(1e-9).contains(e) for e in edges)
+    # the deepest point of the axis is its largest inscribed circle's centre
+    k = int(np.argmax(d.clearances))
+    centre = shapely.Point(d.vertices[k])
+    assert abs(outline.exterior.distance(centre) - d.clearances[k]) < 1e-9
+
+
+def test_docstring_example():
+    import doctest
+
+    failures, tried = doctest.testmod(gvd)
+    assert tried > 0 and failures == 0

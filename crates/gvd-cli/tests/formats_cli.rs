@@ -12,7 +12,9 @@ fn gvd(args: &[&std::ffi::OsStr]) -> Output {
 }
 
 fn repo(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(rel)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(rel)
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -90,7 +92,10 @@ fn offsets_of_a_wkt_pocket_as_dxf_arcs_and_lines() {
     ]));
     let text = std::fs::read_to_string(&dxf).unwrap();
     // the reflex corner of the pocket rounds its offset with an arc
-    assert!(text.contains("\nLINE\n") && text.contains("\nARC\n"), "{text}");
+    assert!(
+        text.contains("\nLINE\n") && text.contains("\nARC\n"),
+        "{text}"
+    );
     assert!(text.ends_with("0\nENDSEC\n0\nEOF\n"));
 }
 
@@ -103,7 +108,12 @@ fn the_format_comes_from_the_extension_or_the_flag() {
     )
     .unwrap();
     let out = scratch("points.json");
-    let refused = gvd(&["compute".as_ref(), txt.as_ref(), "--json".as_ref(), out.as_ref()]);
+    let refused = gvd(&[
+        "compute".as_ref(),
+        txt.as_ref(),
+        "--json".as_ref(),
+        out.as_ref(),
+    ]);
     assert!(!refused.status.success());
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--format"));
     assert!(!out.exists());
@@ -126,10 +136,17 @@ fn the_format_comes_from_the_extension_or_the_flag() {
             "geometry": {"type": "LineString", "coordinates": [[0, 0], [0, 0]]}}]}"#,
     )
     .unwrap();
-    let refused = gvd(&["compute".as_ref(), bad.as_ref(), "--json".as_ref(), out.as_ref()]);
+    let refused = gvd(&[
+        "compute".as_ref(),
+        bad.as_ref(),
+        "--json".as_ref(),
+        out.as_ref(),
+    ]);
     let err = String::from_utf8_lossy(&refused.stderr);
     assert!(
-        !refused.status.success() && err.contains("site 0 field 'points'") && err.contains("(feature 0)"),
+        !refused.status.success()
+            && err.contains("site 0 field 'points'")
+            && err.contains("(feature 0)"),
         "{err}"
     );
 }

@@ -462,7 +462,7 @@ mod tests {
         let kinds: Vec<&str> = scene.sites().iter().map(|s| s.kind.name()).collect();
         assert_eq!(
             kinds,
-            ["segment", "arc", "arc", "polygon", "arc", "polyline"]
+            ["segment", "arc", "arc", "arc", "polygon", "arc", "polyline"]
         );
         assert_eq!(warnings, ["entities not read: SPLINE ×1, TEXT ×2"]);
         // the polyline's first point is the bulge arc's computed end, to the bit

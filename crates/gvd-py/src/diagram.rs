@@ -6,8 +6,8 @@ use crate::offsets::PyOffset;
 use crate::report::PyReport;
 use gvd::complex::{FeatureKind, Generator};
 use gvd::{Scene, VoronoiComplex};
-use numpy::ndarray::{Array1, Array2, Array3};
-use numpy::IntoPyArray;
+use numpy::ndarray::{Array1, Array2};
+use numpy::{IntoPyArray, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::sync::{Arc, OnceLock};
@@ -50,13 +50,23 @@ fn frozen<'py>(a: Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
 }
 
 fn points_array(points: impl Iterator<Item = gvd::Point>, n: usize) -> Array2<f64> {
-    let mut flat = Vec::with_capacity(2 * n);
-    for p in points {
-        flat.push(p.x);
-        flat.push(p.y);
+    let mut rows = Array2::zeros((n, 2));
+    for (mut row, p) in rows.rows_mut().into_iter().zip(points) {
+        row[0] = p.x;
+        row[1] = p.y;
     }
-    let rows = flat.len() / 2;
-    Array2::from_shape_vec((rows, 2), flat).expect("two columns")
+    rows
+}
+
+/// `rows` of `N` integers as an array of shape `(rows.len(), N)`.
+fn int_rows<const N: usize>(rows: impl Iterator<Item = [i64; N]>, n: usize) -> Array2<i64> {
+    let mut out = Array2::zeros((n, N));
+    for (mut row, r) in out.rows_mut().into_iter().zip(rows) {
+        for (k, v) in r.into_iter().enumerate() {
+            row[k] = v;
+        }
+    }
+    out
 }
 
 fn offsets(lengths: impl Iterator<Item = usize>) -> Array1<i64> {
@@ -132,16 +142,12 @@ impl PyDiagram {
     #[getter]
     fn vertex_generators<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.cached(py, 1, |d| {
-            let rows: Vec<i64> = d
+            let n = d.vertices.iter().map(|v| v.sites.len()).sum();
+            let rows = d
                 .vertices
                 .iter()
-                .flat_map(|v| v.sites.iter().flat_map(generator_row))
-                .collect();
-            let n = rows.len() / 3;
-            Ok(Array2::from_shape_vec((n, 3), rows)
-                .expect("three columns")
-                .into_pyarray(py)
-                .into_any())
+                .flat_map(|v| v.sites.iter().map(generator_row));
+            Ok(int_rows(rows, n).into_pyarray(py).into_any())
         })
     }
 
@@ -183,16 +189,13 @@ impl PyDiagram {
     #[getter]
     fn edge_generators<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.cached(py, 5, |d| {
-            let rows: Vec<i64> = d
+            let rows = d
                 .edges
                 .iter()
-                .flat_map(|e| e.sites.iter().flat_map(generator_row))
-                .collect();
-            let n = d.edges.len();
-            Ok(Array3::from_shape_vec((n, 2, 3), rows)
-                .expect("shape")
-                .into_pyarray(py)
-                .into_any())
+                .flat_map(|e| e.sites.iter().map(generator_row));
+            let flat = int_rows(rows, 2 * d.edges.len());
+            let arr = flat.into_pyarray(py);
+            Ok(arr.reshape([d.edges.len(), 2, 3])?.into_any())
         })
     }
 
@@ -200,15 +203,8 @@ impl PyDiagram {
     #[getter]
     fn edge_sites<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.cached(py, 6, |d| {
-            let flat: Vec<i64> = d
-                .edges
-                .iter()
-                .flat_map(|e| e.sites.map(|g| g.site() as i64))
-                .collect();
-            Ok(Array2::from_shape_vec((d.edges.len(), 2), flat)
-                .expect("two columns")
-                .into_pyarray(py)
-                .into_any())
+            let rows = d.edges.iter().map(|e| e.sites.map(|g| g.site() as i64));
+            Ok(int_rows(rows, d.edges.len()).into_pyarray(py).into_any())
         })
     }
 
@@ -218,15 +214,8 @@ impl PyDiagram {
     fn edge_ends<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.cached(py, 7, |d| {
             let end = |v: Option<usize>| v.map_or(-1, |k| k as i64);
-            let flat: Vec<i64> = d
-                .edges
-                .iter()
-                .flat_map(|e| [end(e.from), end(e.to)])
-                .collect();
-            Ok(Array2::from_shape_vec((d.edges.len(), 2), flat)
-                .expect("two columns")
-                .into_pyarray(py)
-                .into_any())
+            let rows = d.edges.iter().map(|e| [end(e.from), end(e.to)]);
+            Ok(int_rows(rows, d.edges.len()).into_pyarray(py).into_any())
         })
     }
 

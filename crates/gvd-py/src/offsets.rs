@@ -68,10 +68,12 @@ impl PyOffset {
         }
         let arrays = self.offset.curves.iter().map(|c| {
             let pts = c.polyline(tol);
-            let flat: Vec<f64> = pts.iter().flat_map(|q| [q.x, q.y]).collect();
-            Array2::from_shape_vec((pts.len(), 2), flat)
-                .expect("two columns")
-                .into_pyarray(py)
+            let mut rows = Array2::zeros((pts.len(), 2));
+            for (mut row, q) in rows.rows_mut().into_iter().zip(&pts) {
+                row[0] = q.x;
+                row[1] = q.y;
+            }
+            rows.into_pyarray(py)
         });
         PyList::new(py, arrays)
     }

@@ -89,17 +89,19 @@ impl PyScene {
     }
 
     fn builder(&mut self) -> PyResult<&mut SceneBuilder> {
-        if self.builder.is_none() {
-            let mut b = self.new_builder()?;
-            if let Some(scene) = &self.built {
-                for site in scene.sites() {
-                    b.add(site.clone()).map_err(to_py)?;
+        let b = match self.builder.take() {
+            Some(b) => b,
+            None => {
+                let mut b = self.new_builder()?;
+                if let Some(scene) = &self.built {
+                    for site in scene.sites() {
+                        b.add(site.clone()).map_err(to_py)?;
+                    }
                 }
+                b
             }
-            self.builder = Some(b);
-        }
-        // set just above
-        Ok(self.builder.as_mut().expect("builder"))
+        };
+        Ok(self.builder.insert(b))
     }
 
     /// Checks and appends `site`; a [`gvd::Error::Scene`] of a constructor (an equation
@@ -308,22 +310,19 @@ impl PyScene {
 
     /// The kind name of each site, in order.
     fn kinds(&mut self) -> PyResult<Vec<&'static str>> {
-        if let Some(scene) = &self.built {
-            return Ok(scene.sites().iter().map(|s| s.kind.name()).collect());
-        }
         let scene = self.scene()?;
         Ok(scene.sites().iter().map(|s| s.kind.name()).collect())
     }
 
-    fn __len__(&mut self) -> PyResult<usize> {
+    fn __len__(&self) -> usize {
         match (&self.built, &self.builder) {
-            (_, Some(b)) => Ok(b.len()),
-            (Some(s), None) => Ok(s.sites().len()),
-            (None, None) => Ok(0),
+            (_, Some(b)) => b.len(),
+            (Some(s), None) => s.sites().len(),
+            (None, None) => 0,
         }
     }
 
-    fn __repr__(&mut self) -> PyResult<String> {
+    fn __repr__(&self) -> PyResult<String> {
         let d = self.domain.to_array();
         Ok(format!(
             "Scene(domain=[{}, {}, {}, {}], epsilon={}, mode='{}', {} sites)",
@@ -333,7 +332,7 @@ impl PyScene {
             d[3],
             self.epsilon(),
             self.mode(),
-            self.__len__()?
+            self.__len__()
         ))
     }
 

@@ -2,11 +2,13 @@
 
 mod bench;
 mod bench_implicit;
+mod formats;
 mod output;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
-use gvd::{Scene, VoronoiComplex};
+use formats::{read_scene_as, FormatArg, ModeArg};
+use gvd::VoronoiComplex;
 use output::Outputs;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -44,11 +46,24 @@ enum Command {
 
 #[derive(Args)]
 struct ComputeArgs {
-    /// The scene (JSON, see SCENE_FORMAT.md; `-` reads standard input).
+    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT or DXF by its extension (`-`
+    /// reads JSON from standard input).
     scene: PathBuf,
+    /// The scene's format, whatever its extension.
+    #[arg(long, value_enum)]
+    format: Option<FormatArg>,
+    /// The mode, instead of the scene's (GeoJSON, WKT and DXF have none: voronoi).
+    #[arg(long, value_enum)]
+    mode: Option<ModeArg>,
     /// Write the diagram here (JSON; `-` for standard output).
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Write the diagram here as GeoJSON: vertices, edges and cells as features.
+    #[arg(long)]
+    geojson: Option<PathBuf>,
+    /// Write the edges (the medial axis in medial_axis mode) here as DXF LINEs.
+    #[arg(long)]
+    dxf: Option<PathBuf>,
     /// Write a picture here (SVG; `-` for standard output).
     #[arg(long)]
     svg: Option<PathBuf>,
@@ -80,8 +95,21 @@ struct ComputeArgs {
 
 #[derive(Args)]
 struct OffsetArgs {
-    /// The scene (JSON, see SCENE_FORMAT.md; `-` reads standard input).
+    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT or DXF by its extension (`-`
+    /// reads JSON from standard input).
     scene: PathBuf,
+    /// The scene's format, whatever its extension.
+    #[arg(long, value_enum)]
+    format: Option<FormatArg>,
+    /// The mode, instead of the scene's (medial_axis: the offsets of a pocket).
+    #[arg(long, value_enum)]
+    mode: Option<ModeArg>,
+    /// Write the curves here as DXF LINE and ARC entities.
+    #[arg(long)]
+    dxf: Option<PathBuf>,
+    /// Write the curves here as GeoJSON LineStrings (arcs as chords within epsilon).
+    #[arg(long)]
+    geojson: Option<PathBuf>,
     /// The offset distance (finite, > 0).
     #[arg(long, allow_negative_numbers = true)]
     distance: f64,
@@ -164,14 +192,17 @@ fn run(cli: Cli) -> Result<ExitCode> {
 
 /// `gvd compute`: the diagram, written as JSON and/or SVG.
 fn compute(args: ComputeArgs) -> Result<ExitCode> {
-    let mut outputs = outputs_for(&args.scene, &[&args.json, &args.svg])?;
+    let mut outputs = outputs_for(
+        &args.scene,
+        &[&args.json, &args.svg, &args.geojson, &args.dxf],
+    )?;
     if let Some(n) = args.threads {
         rayon::ThreadPoolBuilder::new()
             .num_threads(n as usize)
             .build_global()
             .context("cannot start the worker threads")?;
     }
-    let sc = read_scene(&args.scene)?;
+    let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
     let options = gvd::Options {
         engine: args.engine.into(),
         parallel: args.threads != Some(1),
@@ -221,6 +252,14 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
         let svg = gvd::io::svg::render_svg(&sc, d, &opts);
         outputs.write(path, |w| w.write_all(svg.as_bytes()))?;
     }
+    if let Some(path) = &args.geojson {
+        let text = gvd::io::geojson::write_diagram(&sc, d);
+        outputs.write(path, |w| w.write_all(text.as_bytes()))?;
+    }
+    if let Some(path) = &args.dxf {
+        let text = gvd::io::dxf::write_diagram(d);
+        outputs.write(path, |w| w.write_all(text.as_bytes()))?;
+    }
     outputs.commit()?;
     // The process ends here: freeing millions of small vectors one by one
     // (0.5 s at 10^6 points) is slower than the kernel taking the pages back.
@@ -231,9 +270,12 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
 
 /// `gvd offset`: offset curves from the diagram, written as JSON and/or SVG.
 fn offset(args: OffsetArgs) -> Result<ExitCode> {
-    let mut outputs = outputs_for(&args.scene, &[&args.json, &args.svg])?;
+    let mut outputs = outputs_for(
+        &args.scene,
+        &[&args.json, &args.svg, &args.dxf, &args.geojson],
+    )?;
     gvd::offset::check_distance(args.distance)?;
-    let sc = read_scene(&args.scene)?;
+    let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
     let (off, diagram) = gvd::offset::offset_scene(&sc, args.distance, &Default::default())
         .with_context(|| format!("{}", args.scene.display()))?;
     eprintln!(
@@ -256,13 +298,21 @@ fn offset(args: OffsetArgs) -> Result<ExitCode> {
         let svg = gvd::io::svg::render_offset_svg(&sc, &diagram, &off, &Default::default());
         outputs.write(path, |w| w.write_all(svg.as_bytes()))?;
     }
+    if let Some(path) = &args.dxf {
+        let text = gvd::io::dxf::write_offset(&off);
+        outputs.write(path, |w| w.write_all(text.as_bytes()))?;
+    }
+    if let Some(path) = &args.geojson {
+        let text = gvd::io::geojson::write_offset(&off, sc.epsilon());
+        outputs.write(path, |w| w.write_all(text.as_bytes()))?;
+    }
     outputs.commit()?;
     Ok(ExitCode::SUCCESS)
 }
 
 /// `gvd verify`: the brute-force check; exit 1 when the diagram fails it.
 fn verify(args: VerifyArgs) -> Result<ExitCode> {
-    let sc = read_scene(&args.scene)?;
+    let sc = read_scene_as(&args.scene, None, None)?;
     let text = read_text(&args.diagram)?;
     let d: VoronoiComplex = gvd::io::json::read_diagram(&text)
         .with_context(|| format!("{}", args.diagram.display()))?;
@@ -310,7 +360,7 @@ fn outputs_for(scene: &Path, paths: &[&Option<PathBuf>]) -> Result<Outputs> {
         any = true;
     }
     if !any {
-        bail!("nothing to write: give --json OUT.json and/or --svg OUT.svg");
+        bail!("nothing to write: give --json, --svg, --geojson or --dxf OUT");
     }
     Ok(outputs)
 }
@@ -344,18 +394,4 @@ fn read_text(path: &Path) -> Result<String> {
         return Ok(text);
     }
     std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
-}
-
-/// Reads a scene, warning on stderr about fields the format does not know.
-fn read_scene(path: &Path) -> Result<Scene> {
-    let text = read_text(path)?;
-    let read = || -> Result<Scene, gvd::Error> {
-        let value: serde_json::Value =
-            serde_json::from_str(&text).map_err(|e| gvd::Error::Json(e.to_string()))?;
-        for w in Scene::unknown_fields(&value) {
-            eprintln!("gvd: warning: {}: {w}", path.display());
-        }
-        Scene::from_value(&value)
-    };
-    read().with_context(|| format!("{}", path.display()))
 }

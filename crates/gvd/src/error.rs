@@ -73,6 +73,38 @@ pub enum Error {
 }
 
 impl Error {
+    /// The index of the site at fault, when the error names one (`Site`, `Unsupported`,
+    /// the first of a `Conflict`): for bindings that carry it as a structured value.
+    pub fn site_index(&self) -> Option<usize> {
+        match self {
+            Error::Site { site, .. }
+            | Error::Unsupported { site, .. }
+            | Error::Conflict { site, .. } => Some(*site),
+            _ => None,
+        }
+    }
+    /// The field at fault (`domain`, `epsilon`, `at`, `metric.p`, …), when the error names
+    /// one (`Scene`, `Site`), or the option's name for `InvalidOption`.
+    pub fn field(&self) -> Option<&str> {
+        match self {
+            Error::Scene { field, .. } | Error::Site { field, .. } => Some(field),
+            Error::InvalidOption { option, .. } => Some(option),
+            _ => None,
+        }
+    }
+    /// The reason alone, without the site and field the [`std::fmt::Display`] text
+    /// prefixes.
+    pub fn message(&self) -> &str {
+        match self {
+            Error::Json(m) | Error::Internal(m) | Error::Diagram(m) => m,
+            Error::Scene { message, .. }
+            | Error::Site { message, .. }
+            | Error::Unsupported { message, .. }
+            | Error::Conflict { message, .. }
+            | Error::InvalidOption { message, .. }
+            | Error::Budget { message, .. } => message,
+        }
+    }
     pub(crate) fn site(site: usize, field: &str, message: impl Into<String>) -> Self {
         Error::Site {
             site,
@@ -85,5 +117,28 @@ impl Error {
             field: field.to_string(),
             message: message.into(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Error;
+
+    #[test]
+    fn structured_accessors() {
+        let e = Error::site(3, "metric.p", "p must be even");
+        assert_eq!(
+            (e.site_index(), e.field(), e.message()),
+            (Some(3), Some("metric.p"), "p must be even")
+        );
+        let e = Error::scene("domain", "empty");
+        assert_eq!((e.site_index(), e.field()), (None, Some("domain")));
+        let e = Error::Conflict {
+            site: 1,
+            other: 4,
+            message: "they cross".into(),
+        };
+        assert_eq!((e.site_index(), e.field()), (Some(1), None));
+        assert_eq!(Error::Json("eof".into()).message(), "eof");
     }
 }

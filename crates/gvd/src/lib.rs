@@ -32,6 +32,7 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 #![warn(clippy::print_stdout, clippy::print_stderr)]
 
+mod clearance;
 pub mod complex;
 mod compute;
 mod error;

@@ -3,6 +3,8 @@
 use crate::complex::VoronoiComplex;
 use crate::error::Error;
 use crate::geom::Point;
+use crate::scene::{Metric, Mode, Scene, SiteKind};
+use serde_json::{json, Value};
 
 /// Reads a diagram. Refuses invalid JSON, missing or mistyped required fields and
 /// non-finite coordinates with [`Error::Diagram`]; structural consistency (indices,
@@ -91,10 +93,140 @@ fn write_list<T: serde::Serialize + Sync, W: std::io::Write>(
     out.write_all(b"]")
 }
 
+/// Writes a scene in the scene format (`docs/SCENE_FORMAT.md`): what
+/// [`Scene::from_json`] reads back as the same scene. Scenes read from other formats
+/// (GeoJSON, WKT, DXF) or built in code are converted this way.
+pub fn write_scene(scene: &Scene) -> String {
+    let xy = |p: &Point| json!([p.x, p.y]);
+    let list = |ps: &[Point]| Value::Array(ps.iter().map(xy).collect());
+    let sites: Vec<Value> = scene
+        .sites()
+        .iter()
+        .map(|s| {
+            let mut v = match &s.kind {
+                SiteKind::Point { at, metric } => {
+                    let metric = match metric {
+                        Metric::Euclidean => json!({"kind": "euclidean"}),
+                        Metric::Lp { p } => json!({"kind": "lp", "p": p}),
+                        Metric::Anisotropic { matrix, weight } => {
+                            json!({"kind": "anisotropic", "matrix": matrix, "weight": weight})
+                        }
+                        Metric::Power { weight } => json!({"kind": "power", "weight": weight}),
+                        Metric::Moebius { scale, weight } => {
+                            json!({"kind": "moebius", "scale": scale, "weight": weight})
+                        }
+                    };
+                    json!({"at": xy(at), "metric": metric})
+                }
+                SiteKind::Circle { center, radius } => {
+                    json!({"center": xy(center), "radius": radius})
+                }
+                SiteKind::Ellipse {
+                    center,
+                    semi_axes,
+                    rotation,
+                } => json!({"center": xy(center), "semi_axes": semi_axes, "rotation": rotation}),
+                SiteKind::Segment { from, to } => json!({"from": xy(from), "to": xy(to)}),
+                SiteKind::Arc {
+                    center,
+                    radius,
+                    start_angle,
+                    end_angle,
+                } => json!({"center": xy(center), "radius": radius,
+                            "start_angle": start_angle, "end_angle": end_angle}),
+                SiteKind::Polyline { points } => json!({"points": list(points)}),
+                SiteKind::Polygon { rings } => {
+                    json!({"rings": rings.iter().map(|r| list(r)).collect::<Vec<_>>()})
+                }
+                SiteKind::Algebraic { equation, clip } => {
+                    let mut v = json!({"equation": equation.text()});
+                    if let Some(c) = clip {
+                        v["clip"] = json!(c.to_array());
+                    }
+                    v
+                }
+                SiteKind::Bezier {
+                    control_points,
+                    weights,
+                } => {
+                    let mut v = json!({"control_points": list(control_points)});
+                    if let Some(w) = weights {
+                        v["weights"] = json!(w);
+                    }
+                    v
+                }
+                SiteKind::Bspline {
+                    degree,
+                    control_points,
+                    knots,
+                    weights,
+                    closed,
+                } => {
+                    let mut v = json!({"degree": degree, "control_points": list(control_points),
+                                       "knots": knots, "closed": closed});
+                    if let Some(w) = weights {
+                        v["weights"] = json!(w);
+                    }
+                    v
+                }
+                SiteKind::Field { equation } | SiteKind::ImplicitField { equation } => {
+                    json!({"equation": equation.text()})
+                }
+            };
+            v["kind"] = json!(s.kind.name());
+            if let Some(id) = &s.id {
+                v["id"] = json!(id);
+            }
+            v
+        })
+        .collect();
+    let mode = match scene.mode() {
+        Mode::Voronoi => "voronoi",
+        Mode::Complex => "complex",
+        Mode::MedialAxis => "medial_axis",
+    };
+    let v = json!({
+        "domain": scene.domain().to_array(),
+        "epsilon": scene.epsilon(),
+        "mode": mode,
+        "sites": sites,
+    });
+    // serializing plain data cannot fail
+    serde_json::to_string(&v).unwrap_or_default()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::complex::{smallvec, Edge, Generator, Vertex};
+
+    #[test]
+    fn a_written_scene_reads_back_the_same() {
+        use crate::scene::Site;
+        let scene = Scene::new(
+            crate::Aabb::from_array([-3.0, -3.0, 3.0, 3.0]),
+            1e-3,
+            Mode::Complex,
+            vec![
+                Site::point_with([0.1, 0.2], Metric::Lp { p: 4 }).with_id("a"),
+                Site::point_with(
+                    [2.0, 2.0],
+                    Metric::Moebius {
+                        scale: 2.0,
+                        weight: 0.5,
+                    },
+                ),
+                Site::circle([-2.0, 2.0], 0.25),
+                Site::segment([1.0, -1.0], [2.0, -2.5]),
+                Site::arc([-1.5, -1.5], 0.5, 0.0, 1.0 / 3.0),
+                Site::polyline([[0.0, -2.0], [0.5, -2.5], [1.0, -2.0]]),
+                Site::polygon([[[-2.5, 0.0], [-1.5, 0.0], [-2.0, 1.0]]]),
+                Site::algebraic("x^2 + y^2 - 0.01", None).unwrap(),
+            ],
+        )
+        .unwrap();
+        assert_eq!(Scene::from_json(&write_scene(&scene)).unwrap(), scene);
+    }
 
     #[test]
     fn round_trip_and_errors() {

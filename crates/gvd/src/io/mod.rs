@@ -1,8 +1,14 @@
-//! Writers and readers of diagrams. Writers never compute geometry: they print what the
-//! model holds.
+//! Writers and readers of scenes and diagrams. Writers never compute geometry: they
+//! print what the model holds. Readers of every format build a validated scene through
+//! [`crate::SceneBuilder`], with the checks and messages of JSON input.
 
+pub mod dxf;
+pub mod geojson;
 pub mod json;
+mod read;
 pub mod svg;
+pub mod wkt;
 
-pub use json::{read_diagram, write_diagram};
+pub use json::{read_diagram, write_diagram, write_scene};
+pub use read::{read_scene, Format, ReadOptions};
 pub use svg::{render_svg, SvgOptions};

@@ -72,6 +72,39 @@ pub struct Curve {
     pub primitives: Vec<Primitive>,
 }
 
+impl Curve {
+    /// The curve as points within `tolerance` of it (arcs as chords whose sagitta
+    /// `r (1 − cos(θ/2))` stays below `tolerance`), from its start to its end; a closed
+    /// curve repeats its first point last.
+    pub fn polyline(&self, tolerance: f64) -> Vec<Point> {
+        let mut out = Vec::new();
+        for p in &self.primitives {
+            match *p {
+                Primitive::Line { from, .. } => out.push(from),
+                Primitive::Arc {
+                    radius,
+                    start_angle,
+                    end_angle,
+                    ..
+                } => {
+                    let sweep = (end_angle - start_angle).abs();
+                    let step = if tolerance > 0.0 && tolerance < radius {
+                        2.0 * (1.0 - tolerance / radius).acos()
+                    } else {
+                        sweep
+                    };
+                    let n = (sweep / step.max(1e-6)).ceil().clamp(1.0, 65536.0) as usize;
+                    out.extend((0..n).map(|k| p.point_at(k as f64 / n as f64)));
+                }
+            }
+        }
+        if let Some(last) = self.primitives.last() {
+            out.push(last.end());
+        }
+        out
+    }
+}
+
 /// The offset curves of a scene at one distance.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Offset {

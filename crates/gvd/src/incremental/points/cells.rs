@@ -10,7 +10,7 @@ use crate::geom::{Aabb, Point};
 use crate::par::map_range;
 
 /// Why a face could not be traced; the caller then falls back to the generic
-/// [`crate::cells::build_cells`]. Not expected with exact signs.
+/// [`crate::complex::cells::build_cells`]. Not expected with exact signs.
 #[derive(Debug)]
 pub(super) struct Inconsistent;
 
@@ -135,7 +135,7 @@ impl Frame {
     }
 
     /// `p` moved onto the boundary if it lies within `tol` of it (as
-    /// [`crate::cells::build_cells`] does), else `p`.
+    /// [`crate::complex::cells::build_cells`] does), else `p`.
     fn snap(&self, p: Point) -> Point {
         let (a, b) = (self.domain.min, self.domain.max);
         let dist = [p.y - a.y, b.x - p.x, b.y - p.y, p.x - a.x];

@@ -259,7 +259,7 @@ impl PointDiagram {
     /// domain boundary with the corners the cell holds); one counter-clockwise ring per
     /// site whose cell meets the domain with positive area, sorted by site. The flag is
     /// `false` if some face could not be traced consistently (not expected with exact
-    /// signs); `cells` is then left empty, for [`crate::cells::build_cells`] to fill.
+    /// signs); `cells` is then left empty, for [`crate::complex::cells::build_cells`] to fill.
     pub fn to_complex_with_cells(&self) -> (VoronoiComplex, bool) {
         output::to_complex(self, true)
     }

@@ -1,0 +1,92 @@
+//! Scene formats in (by extension or `--format`) and the GeoJSON and DXF outputs.
+
+use anyhow::{bail, Context, Result};
+use gvd::io::Format;
+use gvd::Scene;
+use std::io::Read;
+use std::path::Path;
+
+/// A scene format named on the command line.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum FormatArg {
+    Json,
+    Geojson,
+    Wkt,
+    Dxf,
+}
+
+impl From<FormatArg> for Format {
+    fn from(f: FormatArg) -> Format {
+        match f {
+            FormatArg::Json => Format::Json,
+            FormatArg::Geojson => Format::GeoJson,
+            FormatArg::Wkt => Format::Wkt,
+            FormatArg::Dxf => Format::Dxf,
+        }
+    }
+}
+
+/// The format of `path`: `--format`, else its extension, else (standard input, other
+/// extensions) JSON.
+fn format_of(path: &Path, given: Option<FormatArg>) -> Result<Format> {
+    if let Some(f) = given {
+        return Ok(f.into());
+    }
+    if path.as_os_str() == "-" {
+        return Ok(Format::Json);
+    }
+    match Format::from_path(path) {
+        Some(f) => Ok(f),
+        None if path.extension().is_none() => Ok(Format::Json),
+        None => bail!(
+            "cannot tell the format of {} from its extension (.json, .geojson, .wkt, .dxf): give --format",
+            path.display()
+        ),
+    }
+}
+
+/// Reads a scene in its format, warning on stderr about unknown fields and entities not
+/// read; `mode` overrides the file's.
+pub fn read_scene_as(
+    path: &Path,
+    format: Option<FormatArg>,
+    mode: Option<gvd::Mode>,
+) -> Result<Scene> {
+    let format = format_of(path, format)?;
+    let mut data = Vec::new();
+    if path.as_os_str() == "-" {
+        std::io::stdin()
+            .read_to_end(&mut data)
+            .context("cannot read standard input")?;
+    } else {
+        data = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    }
+    let options = gvd::io::ReadOptions {
+        mode,
+        ..Default::default()
+    };
+    let (scene, warnings) = gvd::io::read_scene(&data, format, &options)
+        .with_context(|| format!("{}", path.display()))?;
+    for w in warnings {
+        eprintln!("gvd: warning: {}: {w}", path.display());
+    }
+    Ok(scene)
+}
+
+/// A mode named on the command line.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum ModeArg {
+    Voronoi,
+    Complex,
+    MedialAxis,
+}
+
+impl From<ModeArg> for gvd::Mode {
+    fn from(m: ModeArg) -> gvd::Mode {
+        match m {
+            ModeArg::Voronoi => gvd::Mode::Voronoi,
+            ModeArg::Complex => gvd::Mode::Complex,
+            ModeArg::MedialAxis => gvd::Mode::MedialAxis,
+        }
+    }
+}

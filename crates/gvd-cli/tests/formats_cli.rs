@@ -1,0 +1,152 @@
+//! `gvd compute` and `gvd offset` on GeoJSON, WKT and DXF inputs, and their GeoJSON and
+//! DXF outputs.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn gvd(args: &[&std::ffi::OsStr]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gvd"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn repo(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(rel)
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("gvd-formats-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn ok(out: &Output) -> String {
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(out.status.success(), "{err}");
+    err
+}
+
+#[test]
+fn a_dxf_part_computes_verifies_and_writes_geojson_and_dxf() {
+    let part = repo("examples/scenes/plate-bulges.dxf");
+    let (json, geojson, dxf) = (
+        scratch("plate.json"),
+        scratch("plate.geojson"),
+        scratch("plate.dxf"),
+    );
+    let err = ok(&gvd(&[
+        "compute".as_ref(),
+        part.as_ref(),
+        "--json".as_ref(),
+        json.as_ref(),
+        "--geojson".as_ref(),
+        geojson.as_ref(),
+        "--dxf".as_ref(),
+        dxf.as_ref(),
+    ]));
+    assert!(err.contains("entities not read: TEXT ×1"), "{err}");
+    // the diagram passes the independent checker against the scene read from the DXF
+    let out = gvd(&["verify".as_ref(), part.as_ref(), json.as_ref()]);
+    ok(&out);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("PASS"));
+    let gj: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&geojson).unwrap()).unwrap();
+    let d: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let edges = d["edges"].as_array().unwrap();
+    let features = gj["features"].as_array().unwrap();
+    let n_edges = features
+        .iter()
+        .filter(|f| f["properties"]["type"] == "edge")
+        .count();
+    assert_eq!(n_edges, edges.len());
+    let lines = std::fs::read_to_string(&dxf)
+        .unwrap()
+        .lines()
+        .filter(|l| *l == "LINE")
+        .count();
+    let segments: usize = edges
+        .iter()
+        .map(|e| e["points"].as_array().unwrap().len() - 1)
+        .sum();
+    assert_eq!(lines, segments);
+}
+
+#[test]
+fn offsets_of_a_wkt_pocket_as_dxf_arcs_and_lines() {
+    let wkt = scratch("pocket.wkt");
+    std::fs::write(&wkt, "POLYGON ((0 0, 4 0, 4 3, 2 1.5, 0 3, 0 0))\n").unwrap();
+    let dxf = scratch("pocket-offset.dxf");
+    ok(&gvd(&[
+        "offset".as_ref(),
+        wkt.as_ref(),
+        "--mode".as_ref(),
+        "medial-axis".as_ref(),
+        "--distance".as_ref(),
+        "0.3".as_ref(),
+        "--dxf".as_ref(),
+        dxf.as_ref(),
+    ]));
+    let text = std::fs::read_to_string(&dxf).unwrap();
+    // the reflex corner of the pocket rounds its offset with an arc
+    assert!(
+        text.contains("\nLINE\n") && text.contains("\nARC\n"),
+        "{text}"
+    );
+    assert!(text.ends_with("0\nENDSEC\n0\nEOF\n"));
+}
+
+#[test]
+fn the_format_comes_from_the_extension_or_the_flag() {
+    let txt = scratch("points.txt");
+    std::fs::write(
+        &txt,
+        r#"{"type": "MultiPoint", "coordinates": [[0, 0], [1, 0], [0, 1]]}"#,
+    )
+    .unwrap();
+    let out = scratch("points.json");
+    let refused = gvd(&[
+        "compute".as_ref(),
+        txt.as_ref(),
+        "--json".as_ref(),
+        out.as_ref(),
+    ]);
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--format"));
+    assert!(!out.exists());
+    ok(&gvd(&[
+        "compute".as_ref(),
+        txt.as_ref(),
+        "--format".as_ref(),
+        "geojson".as_ref(),
+        "--json".as_ref(),
+        out.as_ref(),
+    ]));
+    let d: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(d["vertices"].as_array().unwrap().len(), 1);
+    // a refused site names the site, the field and the feature it came from
+    let bad = scratch("bad.geojson");
+    std::fs::write(
+        &bad,
+        r#"{"type": "FeatureCollection", "features": [{"type": "Feature", "properties": null,
+            "geometry": {"type": "LineString", "coordinates": [[0, 0], [0, 0]]}}]}"#,
+    )
+    .unwrap();
+    let refused = gvd(&[
+        "compute".as_ref(),
+        bad.as_ref(),
+        "--json".as_ref(),
+        out.as_ref(),
+    ]);
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        !refused.status.success()
+            && err.contains("site 0 field 'points'")
+            && err.contains("(feature 0)"),
+        "{err}"
+    );
+}

@@ -1,0 +1,187 @@
+"""GeoJSON, WKT, DXF and SVG in and out, read back by independent libraries."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import gvd
+
+
+def test_geojson_round_trip_through_shapely():
+    shapely = pytest.importorskip("shapely")
+    from shapely.geometry import mapping, shape
+
+    outline = shapely.Polygon([(0, 0), (10, 0), (10, 6), (4, 8), (0, 6)], [[(2, 2), (2, 4), (4, 4), (4, 2)]])
+    towns = shapely.MultiPoint([(6, 2), (8, 4), (7, 5.5)])
+    fc = {"type": "FeatureCollection", "mode": "voronoi",
+          "features": [{"type": "Feature", "id": "land", "properties": {}, "geometry": mapping(outline)},
+                       {"type": "Feature", "properties": {"id": "towns"}, "geometry": mapping(towns)}]}
+    scene = gvd.Scene.from_geojson(json.dumps(fc))
+    assert scene.kinds() == ["polygon", "point", "point", "point"]
+    sites = json.loads(scene.to_json())["sites"]
+    assert shapely.Polygon(sites[0]["rings"][0], sites[0]["rings"][1:]).equals(outline)
+    d = gvd.compute(scene)
+    out = json.loads(d.to_geojson())
+    assert out["type"] == "FeatureCollection"
+    kinds = [f["properties"]["type"] for f in out["features"]]
+    assert kinds.count("vertex") == len(d.vertices)
+    assert kinds.count("edge") == len(d.edge_sites)
+    assert kinds.count("cell") == len(d.cell_sites)
+    for f in out["features"]:
+        g = shape(f["geometry"])
+        assert g.is_valid
+        p = f["properties"]
+        if p["type"] == "vertex":
+            assert np.allclose(g.coords[0], d.vertices[p["index"]])
+            assert math.isclose(p["clearance"], d.clearances[p["index"]])
+        elif p["type"] == "edge":
+            assert np.allclose(np.asarray(g.coords), d.edges[p["index"]])
+        else:
+            # each cell holds its site, and names its id
+            site = p["site"]
+            assert p["site_id"] == ("land" if site == 0 else "towns")
+            if site > 0:
+                assert g.contains(shapely.Point(sites[site]["at"]))
+    # from shapely directly, and back as shapely geometries
+    again = gvd.Scene.from_shapely(outline, mode="medial_axis")
+    axis = gvd.compute(again)
+    assert axis.verify(grid=128)
+    assert outline.buffer(1e-9).contains(axis.shapely_edges())
+
+
+def test_wkt_in_and_out():
+    shapely = pytest.importorskip("shapely")
+    import shapely.wkt
+
+    text = "POLYGON ((0 0, 4 0, 4 3, 0 3, 0 0))\nPOINT (6 1.5)\nLINESTRING (5 -1, 7 -1)\n"
+    scene = gvd.Scene.from_wkt(text, domain=[-1, -2, 8, 4])
+    assert scene.domain == (-1, -2, 8, 4) and scene.kinds() == ["polygon", "point", "polyline"]
+    d = gvd.compute(scene)
+    points, edges, cells = [shapely.wkt.loads(line) for line in d.to_wkt().splitlines()]
+    assert len(points.geoms) == len(d.vertices)
+    assert len(edges.geoms) == len(d.edge_sites)
+    assert len(cells.geoms) == len(d.cell_sites)
+    # cells (the engine of points writes them): they tile the domain
+    pts = gvd.Scene.from_wkt("MULTIPOINT ((0 0), (4 0), (4 3), (1 2))", domain=[-1, -2, 8, 4])
+    _, _, cells = [shapely.wkt.loads(line) for line in gvd.compute(pts).to_wkt().splitlines()]
+    assert len(cells.geoms) == 4 and abs(sum(c.area for c in cells.geoms) - 9 * 6) < 1e-9
+
+
+def test_dxf_part_with_arcs_and_bulges_read_and_offsets_written(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    # a slot-shaped part written by an independent DXF library: a closed LWPOLYLINE
+    # with two bulges of 1 (half circles), a LINE, an ARC and a CIRCLE outside it
+    doc = ezdxf.new("R2010")
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0, 0, 0, 0), (4, 0, 0, 0, 1), (4, 2, 0, 0, 0), (0, 2, 0, 0, 1)],
+                       format="xyseb", close=True)
+    msp.add_line((0, 4), (4, 4))
+    msp.add_arc((8, 1), 1, 90, 270)
+    msp.add_circle((8, 5), 0.5)
+    msp.add_text("not a site")
+    path = tmp_path / "part.dxf"
+    doc.saveas(path)
+    with pytest.warns(UserWarning, match="TEXT"):
+        scene = gvd.read(path, mode="complex")
+    assert scene.kinds() == ["polyline", "arc", "polyline", "arc", "segment", "arc", "arc", "arc"]
+    sites = json.loads(scene.to_json())["sites"]
+    arcs = [s for s in sites if s["kind"] == "arc" and math.isclose(s["radius"], 1) and s["center"][0] < 6]
+    assert sorted(round(a["center"][0], 12) for a in arcs) == [0, 4]
+    for mode in ("voronoi", "complex"):
+        d = gvd.compute(scene.with_mode(mode))
+        assert d.stats["engine"] == "incremental"
+        report = d.verify(grid=256)
+        assert report, report
+    # offsets of a pocket: the slot outline as a closed polygon-like chain, read back
+    pocket = gvd.Scene([-2, -2, 6, 4], mode="medial_axis")
+    pocket.add_polygon([[[0, 0], [4, 0], [4, 2], [0, 2]]])
+    off = gvd.offset(pocket, 0.5)
+    out = tmp_path / "offset.dxf"
+    out.write_text(off.to_dxf())
+    back = ezdxf.readfile(out)
+    entities = list(back.modelspace())
+    prims = [p for c in off.curves for p in c["primitives"]]
+    assert len(entities) == len(prims) > 0
+    assert all(e.dxftype() == "LINE" for e in entities)  # a square pocket: straight offsets
+    ring = off.to_shapely()[0]
+    assert abs(shapely_area(ring) - 3 * 1) < 1e-9
+
+
+def shapely_area(ring):
+    import shapely
+
+    return shapely.Polygon(ring).area
+
+
+def test_dxf_offset_arcs_read_back_by_ezdxf(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    s = gvd.Scene([-3, -3, 3, 3])
+    s.add_segment([-1, 0], [1, 0])
+    off = gvd.offset(s, 0.5)
+    path = tmp_path / "o.dxf"
+    path.write_text(off.to_dxf())
+    kinds = sorted(e.dxftype() for e in ezdxf.readfile(path).modelspace())
+    assert kinds == ["ARC", "ARC", "LINE", "LINE"]
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxftype() == "ARC":
+            assert math.isclose(e.dxf.radius, 0.5)
+            assert math.isclose((e.dxf.end_angle - e.dxf.start_angle) % 360, 180)
+    edges = tmp_path / "e.dxf"
+    d = gvd.compute(s.with_mode("complex"))
+    edges.write_text(d.to_dxf())
+    lines = list(ezdxf.readfile(edges).modelspace())
+    assert len(lines) == sum(len(e) - 1 for e in d.edges)
+
+
+def test_svg_and_plot():
+    s = gvd.Scene([0, 0, 1, 1])
+    s.add_points([[0.2, 0.2], [0.8, 0.3], [0.5, 0.9]])
+    d = gvd.compute(s)
+    assert d.to_svg(width=300).startswith("<svg") and 'width="300"' in d.to_svg(width=300)
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    ax = d.plot()
+    assert len(ax.collections) >= 2 and ax.get_xlim() == (0, 1)
+
+
+def test_offset_against_shapely_buffer():
+    shapely = pytest.importorskip("shapely")
+    s = gvd.Scene([-3, -3, 3, 3])
+    s.add_segment([-1, 0], [1, 0])
+    s.add_point([0, 2])
+    off = gvd.offset(s, 0.4)
+    ours = shapely.unary_union([shapely.Polygon(r) for r in off.to_shapely(1e-6) if r.is_ring])
+    theirs = shapely.union(shapely.LineString([(-1, 0), (1, 0)]).buffer(0.4, 256), shapely.Point(0, 2).buffer(0.4, 256))
+    assert ours.symmetric_difference(theirs).area < 1e-3
+    assert len(off) == 2 and all(off.closed)
+
+
+def test_a_country_outline_medial_axis(repo):
+    """The shipped GeoJSON country (Natural Earth): its medial axis verifies, and every
+    edge lies inside the outline, read back through shapely."""
+    shapely = pytest.importorskip("shapely")
+    from shapely.geometry import shape
+
+    path = repo / "examples" / "scenes" / "switzerland.geojson"
+    scene = gvd.read(path)
+    assert scene.mode == "medial_axis" and scene.kinds() == ["polygon"]
+    d = gvd.compute(scene)
+    assert d.verify(grid=256)
+    outline = shape(json.loads(path.read_text())["features"][0]["geometry"])
+    edges = [shape(f["geometry"]) for f in json.loads(d.to_geojson())["features"]
+             if f["properties"]["type"] == "edge"]
+    assert len(edges) == len(d.edge_sites) > 100
+    assert all(outline.buffer(1e-9).contains(e) for e in edges)
+    # the deepest point of the axis is its largest inscribed circle's centre
+    k = int(np.argmax(d.clearances))
+    centre = shapely.Point(d.vertices[k])
+    assert abs(outline.boundary.distance(centre) - d.clearances[k]) < 1e-9
+
+
+def test_docstring_example():
+    import doctest
+
+    failures, tried = doctest.testmod(gvd)
+    assert tried > 0 and failures == 0

@@ -78,6 +78,7 @@ pub fn read_scene_as(
 pub enum ModeArg {
     Voronoi,
     Complex,
+    #[value(name = "medial_axis", alias = "medial-axis")]
     MedialAxis,
 }
 

@@ -125,6 +125,12 @@ struct OffsetArgs {
 struct VerifyArgs {
     scene: PathBuf,
     diagram: PathBuf,
+    /// The scene's format, whatever its extension.
+    #[arg(long, value_enum)]
+    format: Option<FormatArg>,
+    /// The mode, instead of the scene's (as given to `gvd compute`).
+    #[arg(long, value_enum)]
+    mode: Option<ModeArg>,
     /// Completeness grid size (N × N, 2 ≤ N ≤ 4096).
     #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u64).range(2..=gvd::verify::MAX_GRID as u64))]
     grid: u64,
@@ -312,7 +318,7 @@ fn offset(args: OffsetArgs) -> Result<ExitCode> {
 
 /// `gvd verify`: the brute-force check; exit 1 when the diagram fails it.
 fn verify(args: VerifyArgs) -> Result<ExitCode> {
-    let sc = read_scene_as(&args.scene, None, None)?;
+    let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
     let text = read_text(&args.diagram)?;
     let d: VoronoiComplex = gvd::io::json::read_diagram(&text)
         .with_context(|| format!("{}", args.diagram.display()))?;

@@ -24,6 +24,7 @@ mod phases;
 use super::bisector_form::{self, OffsetGen};
 use super::segments_arcs::{
     find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
+    NEAR_TOUCH,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
 use crate::geom::arc::{partial_sweep, ray_crosses_odd};
@@ -602,6 +603,13 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
             g.point_owner[p].0,
             "a point lies inside a segment",
         ),
+        Conflict::NearlyOn(i, j, p) => (
+            seg_site(i),
+            j.map_or(g.point_owner[p].0, seg_site),
+            "an end or a point lies within 4e-12 of the domain's size of a segment's inside \
+             without touching it exactly, closer than the segment engine resolves: make it \
+             touch exactly (split the segment there) or move it apart",
+        ),
     };
     let message = if a == b {
         format!("{what} within site {a}")
@@ -635,7 +643,8 @@ pub fn scene_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, E
              ends must meet exactly): the medial axis is empty; use mode 'voronoi' or 'complex'",
         ));
     }
-    if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely) {
+    let near = NEAR_TOUCH * scene.domain().longest_side();
+    if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely, near) {
         return Err(conflict_error(&g, c));
     }
     let scale = scene.domain().longest_side();

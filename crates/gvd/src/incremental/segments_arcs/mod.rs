@@ -25,7 +25,7 @@ mod new_site;
 mod pieces;
 
 pub(crate) use arc_conflicts::{find_arc_conflict, ArcConflict, ArcSpec};
-pub(crate) use crossings::{find_conflict, Conflict};
+pub(crate) use crossings::{find_conflict, Conflict, NEAR_TOUCH};
 pub(crate) use geometry::Gen;
 
 use super::points::PointDiagram;

@@ -8,6 +8,7 @@ mod euclidean;
 pub mod implicit;
 mod lp;
 mod polynomial;
+pub mod polygonal;
 
 pub use algebraic::{AlgebraicField, AlgebraicState};
 pub use circle::CircleField;

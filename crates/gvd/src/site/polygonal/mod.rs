@@ -80,9 +80,10 @@ pub struct Polygonal {
     pub scale: f64,
 }
 
-/// Whether every site of the scene is polygonal (segment, polyline, polygon).
+/// Whether the scene has sites and all are polygonal (segment, polyline, polygon).
 pub fn supports(scene: &Scene) -> bool {
-    scene.sites().iter().all(|s| {
+    !scene.sites().is_empty()
+        && scene.sites().iter().all(|s| {
         matches!(
             s.kind,
             SiteKind::Segment { .. } | SiteKind::Polyline { .. } | SiteKind::Polygon { .. }

@@ -112,40 +112,68 @@ impl Resolver<'_> {
             && valid_tie(self.poly, pair[0], pair[1], m, set, self.tol.tie).is_some()
     }
 
+    /// The order of two points along the bisector of `pair`.
+    fn order(&self, pair: [u32; 2], p: Point, q: Point) -> std::cmp::Ordering {
+        let (kp, tp) = self.poly.bisector_param(pair[0], pair[1], p);
+        let (kq, tq) = self.poly.bisector_param(pair[0], pair[1], q);
+        kp.cmp(&kq).then(tp.total_cmp(&tq))
+    }
+
     /// The concave corner where the curve of two edges ends, when it lies in `b`.
     fn end_corner(&self, pair: [u32; 2], b: &Aabb) -> Option<(u32, Point)> {
         let c = self.poly.shared_corner(pair[0], pair[1])?;
         let Shape::Corner(at) = self.poly.features[c as usize].shape else {
             return None;
         };
-        let inside = b.min.x <= at.x && at.x < b.max.x && b.min.y <= at.y && at.y < b.max.y;
-        inside.then_some((c, at))
+        half_open(b, at).then_some((c, at))
     }
 
-    /// The Voronoi vertex test (¶22): the points of `b` equidistant from its three
-    /// features that are Voronoi points.
-    fn vertices(&self, set: &[u32], b: &Aabb) -> Vec<Point> {
-        if set.len() != 3 {
-            return Vec::new();
-        }
-        let t = [set[0], set[1], set[2]];
+    /// The Voronoi vertex test (¶22): the points of `b` equidistant from three of its
+    /// features, in their oriented zones, with no feature of the set nearer; each with
+    /// its three features.
+    fn vertices(&self, set: &[u32], b: &Aabb) -> Vec<(Point, [u32; 3])> {
         let tol = self.tol.tie;
-        let mut out: Vec<Point> = Vec::new();
-        for q in self.poly.ties3(t) {
-            if b.outside_distance(q) > tol {
-                continue;
-            }
-            let d: Vec<f64> = t.iter().map(|&f| self.poly.features[f as usize].distance(q)).collect();
-            let (lo, hi) = (d.iter().copied().fold(f64::INFINITY, f64::min), d.iter().copied().fold(0.0, f64::max));
-            let zones = t.iter().all(|&f| self.poly.features[f as usize].oriented_zone.contains(q, tol));
-            if hi - lo <= tol && lo > tol && zones && self.poly.free(q) && !out.iter().any(|p| p.dist(q) <= tol) {
-                out.push(q);
+        let mut out: Vec<(Point, [u32; 3])> = Vec::new();
+        let n = set.len();
+        for i in 0..n {
+            for j in i + 1..n {
+                for k in j + 1..n {
+                    let t = [set[i], set[j], set[k]];
+                    for q in self.poly.ties3(t) {
+                        // half-open, so that a vertex on a shared side belongs to one
+                        // box (its neighbours compute the same point from the same
+                        // three features)
+                        if !half_open(b, q) || !self.is_vertex(t, q, set) {
+                            continue;
+                        }
+                        if !out.iter().any(|(p, _)| p.dist(q) <= tol) {
+                            out.push((q, t));
+                        }
+                    }
+                }
             }
         }
         out
     }
 
-    /// Resolves leaf `n` (index `leaf`) with its boundary nodes `ports`.
+    /// Whether `q` is a Voronoi point of the three features `t` among `set`.
+    fn is_vertex(&self, t: [u32; 3], q: Point, set: &[u32]) -> bool {
+        let tol = self.tol.tie;
+        let d = t.map(|f| self.poly.features[f as usize].distance(q));
+        let lo = d.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = d.iter().copied().fold(0.0, f64::max);
+        hi - lo <= tol
+            && lo > tol
+            && t.iter()
+                .all(|&f| self.poly.features[f as usize].oriented_zone.contains(q, tol))
+            && set.iter().all(|&h| {
+                t.contains(&h) || self.poly.features[h as usize].distance(q) >= lo - tol
+            })
+            && self.poly.free(q)
+    }
+
+    /// Resolves leaf `n` with its boundary nodes `ports`: `Err` when they fit no
+    /// pattern and the box may still be split.
     pub fn resolve(&self, n: &Node, ports: &[Port], can_split: bool) -> Result<LeafOutput, Unresolved> {
         let mut out = LeafOutput::default();
         if ports.is_empty() {
@@ -154,90 +182,132 @@ impl Resolver<'_> {
         let set = &n.bs.set;
         let b = &n.aabb;
         let certified = !n.uncertified && set.len() <= 3;
-        let attempt = if certified { self.pattern(set, b, ports) } else { None };
-        match attempt {
-            Some(o) => Ok(o),
-            None if can_split => Err(Unresolved),
-            None => {
-                // the cut-off: every node meets at one vertex of their features
-                let vs = if set.len() == 3 { self.vertices(set, b) } else { Vec::new() };
-                let at = vs.first().copied().unwrap_or_else(|| {
-                    let s = ports.iter().fold(Point::new(0.0, 0.0), |s, p| s + p.at);
-                    s * (1.0 / ports.len() as f64)
-                });
-                let mut sites: Vec<u32> = ports.iter().flat_map(|p| p.pair).collect();
-                sites.sort_unstable();
-                sites.dedup();
-                out.vertices.push(FoundVertex { at, sites });
-                for p in ports {
-                    out.pieces.push(Piece {
-                        pair: p.pair,
-                        ends: [End::Port(p.id), End::Vertex(0)],
-                        points: vec![p.at, at],
-                    });
-                }
-                out.uncertified = 1;
-                Ok(out)
+        if certified || !can_split {
+            // at the cut-off the patterns are tried too (a near-degenerate cluster of
+            // vertices closer than the resolution), but the box counts as uncertified
+            if let Some(mut o) = self.pattern(set, b, ports) {
+                o.uncertified = u32::from(!certified);
+                return Ok(o);
             }
         }
+        if can_split {
+            return Err(Unresolved);
+        }
+        if ports.iter().all(|p| p.pair == ports[0].pair) && ports.len() % 2 == 0 {
+            // one pair: its nodes joined in their order on the bisector
+            let pair = ports[0].pair;
+            let mut mine: Vec<&Port> = ports.iter().collect();
+            mine.sort_by(|x, y| self.order(pair, x.at, y.at));
+            for w in mine.chunks(2) {
+                out.pieces.push(Piece {
+                    pair,
+                    ends: [End::Port(w[0].id), End::Port(w[1].id)],
+                    points: vec![w[0].at, w[1].at],
+                });
+            }
+        } else {
+            // every node meets at one vertex of their features
+            let vs = self.vertices(set, b);
+            let at = vs.first().map(|v| v.0).unwrap_or_else(|| {
+                let s = ports.iter().fold(Point::new(0.0, 0.0), |s, p| s + p.at);
+                s * (1.0 / ports.len() as f64)
+            });
+            let mut sites: Vec<u32> = ports.iter().flat_map(|p| p.pair).collect();
+            sites.sort_unstable();
+            sites.dedup();
+            out.vertices.push(FoundVertex { at, sites });
+            for p in ports {
+                out.pieces.push(Piece {
+                    pair: p.pair,
+                    ends: [End::Port(p.id), End::Vertex(0)],
+                    points: vec![p.at, at],
+                });
+            }
+        }
+        out.uncertified = 1;
+        Ok(out)
     }
 
-    /// The certified patterns: one Voronoi vertex joined to every node (Fig. 6(d,e),
-    /// and the degree-2 vertices where a curve crosses a zone boundary), or arcs
-    /// joining the nodes of each pair in their order along the bisector (Figs. 4, 5),
-    /// each possibly ending at the concave corner of its two edges.
+    /// The patterns: Voronoi vertices (Fig. 6(d,e), and the degree-2 vertices where a
+    /// curve crosses a zone boundary), each node joined to the one vertex whose
+    /// features hold its pair, vertices sharing a pair joined to each other; or,
+    /// without a vertex, the nodes of each pair joined in their order along the
+    /// bisector (Figs. 4, 5). A curve may end at the concave corner of its two edges.
     fn pattern(&self, set: &[u32], b: &Aabb, ports: &[Port]) -> Option<LeafOutput> {
         let mut out = LeafOutput::default();
         let vs = self.vertices(set, b);
-        if vs.len() >= 2 {
-            return None;
+        if vs.is_empty() {
+            self.arcs_only(set, b, ports, &mut out)?;
+            return Some(out);
         }
-        if let Some(&v) = vs.first() {
-            let mut seen: Vec<[u32; 2]> = Vec::new();
+        for (at, t) in &vs {
             out.vertices.push(FoundVertex {
-                at: v,
-                sites: set.to_vec(),
+                at: *at,
+                sites: sorted(*t),
             });
-            for p in ports {
-                if seen.contains(&p.pair) || !self.arc_ok(p.pair, p.at, v, set, b) {
-                    return None;
-                }
-                seen.push(p.pair);
-                out.pieces.push(self.piece(p.pair, [End::Port(p.id), End::Vertex(0)], p.at, v));
+        }
+        let holds = |t: &[u32; 3], pair: [u32; 2]| t.contains(&pair[0]) && t.contains(&pair[1]);
+        let mut degree = vec![0usize; vs.len()];
+        let mut joined: Vec<(usize, [u32; 2])> = Vec::new();
+        for p in ports {
+            let mut owners = (0..vs.len()).filter(|&v| holds(&vs[v].1, p.pair));
+            let (Some(v), None) = (owners.next(), owners.next()) else {
+                return None;
+            };
+            if joined.contains(&(v, p.pair)) || !self.arc_ok(p.pair, p.at, vs[v].0, set, b) {
+                return None;
             }
-            let mut degree = seen.len();
-            for (i, &f) in set.iter().enumerate() {
-                for &g in &set[i + 1..] {
-                    let pair = [f, g];
-                    if seen.contains(&pair) || self.poly.zone_boundary(f, g) {
-                        continue;
-                    }
-                    // a curve without a node must end at its edges' corner in the box
-                    let (c, at) = self.end_corner(pair, b)?;
-                    if !self.arc_ok(pair, v, at, set, b) {
+            joined.push((v, p.pair));
+            degree[v] += 1;
+            let ends = [End::Port(p.id), End::Vertex(v as u32)];
+            out.pieces.push(self.piece(p.pair, ends, p.at, vs[v].0));
+        }
+        for v in 0..vs.len() {
+            let t = vs[v].1;
+            for pair in [[t[0], t[1]], [t[0], t[2]], [t[1], t[2]]] {
+                if joined.contains(&(v, pair)) || self.poly.zone_boundary(pair[0], pair[1]) {
+                    continue;
+                }
+                let other = (0..vs.len()).find(|&w| w != v && holds(&vs[w].1, pair));
+                if let Some(w) = other {
+                    // an edge between two vertices of the box
+                    if !self.arc_ok(pair, vs[v].0, vs[w].0, set, b) {
                         return None;
                     }
-                    let k = out.vertices.len() as u32;
-                    out.vertices.push(FoundVertex {
-                        at,
-                        sites: sorted([c, f, g]),
-                    });
-                    out.pieces.push(self.piece(pair, [End::Vertex(0), End::Vertex(k)], v, at));
-                    degree += 1;
+                    joined.push((v, pair));
+                    joined.push((w, pair));
+                    degree[v] += 1;
+                    degree[w] += 1;
+                    let ends = [End::Vertex(v as u32), End::Vertex(w as u32)];
+                    out.pieces.push(self.piece(pair, ends, vs[v].0, vs[w].0));
+                    continue;
                 }
+                // a curve without a node must end at its edges' corner in the box
+                let (c, at) = self.end_corner(pair, b)?;
+                if !self.arc_ok(pair, vs[v].0, at, set, b) {
+                    return None;
+                }
+                let k = out.vertices.len() as u32;
+                out.vertices.push(FoundVertex {
+                    at,
+                    sites: sorted([c, pair[0], pair[1]]),
+                });
+                out.pieces.push(self.piece(pair, [End::Vertex(v as u32), End::Vertex(k)], vs[v].0, at));
+                degree[v] += 1;
             }
-            return (degree >= 2).then_some(out);
         }
+        degree.iter().all(|&d| d >= 2).then_some(out)
+    }
+
+    /// The nodes of each pair joined in their order along its bisector, an odd one out
+    /// ending at its edges' concave corner in the box.
+    fn arcs_only(&self, set: &[u32], b: &Aabb, ports: &[Port], out: &mut LeafOutput) -> Option<()> {
         let mut pairs: Vec<[u32; 2]> = ports.iter().map(|p| p.pair).collect();
         pairs.sort_unstable();
         pairs.dedup();
         for pair in pairs {
             let mut mine: Vec<&Port> = ports.iter().filter(|p| p.pair == pair).collect();
-            mine.sort_by(|x, y| {
-                let (kx, tx) = self.poly.bisector_param(pair[0], pair[1], x.at);
-                let (ky, ty) = self.poly.bisector_param(pair[0], pair[1], y.at);
-                kx.cmp(&ky).then(tx.total_cmp(&ty))
-            });
+            mine.sort_by(|x, y| self.order(pair, x.at, y.at));
             let mut i = 0;
             while i < mine.len() {
                 if i + 1 < mine.len() && self.arc_ok(pair, mine[i].at, mine[i + 1].at, set, b) {
@@ -261,8 +331,13 @@ impl Resolver<'_> {
                 i += 1;
             }
         }
-        Some(out)
+        Some(())
     }
+}
+
+/// Whether `q` lies in `[min, max)²` of `b`.
+fn half_open(b: &Aabb, q: Point) -> bool {
+    b.min.x <= q.x && q.x < b.max.x && b.min.y <= q.y && q.y < b.max.y
 }
 
 fn sorted(mut s: [u32; 3]) -> Vec<u32> {

@@ -89,7 +89,7 @@ pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Ou
     budget.check(eps)?;
     let t_subdivide = start.elapsed().as_secs_f64();
     let visited_subdivision = leaves.len();
-    let mut balance_splits = ctx.balance(&mut leaves);
+    let balance_splits = ctx.balance(&mut leaves);
     budget.check(eps)?;
     let t_refine = start.elapsed().as_secs_f64();
     let tol = Tol {
@@ -111,7 +111,7 @@ pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Ou
         let mut outputs = Vec::with_capacity(leaves.len());
         for (l, n) in leaves.iter().enumerate() {
             let ports = construct::ports_of(l, &segs, &nodes);
-            let can_split = !last && ctx.split(n).is_some();
+            let can_split = !last && ctx.can_split(n);
             match resolver.resolve(n, &ports, can_split) {
                 Ok(o) => outputs.push(o),
                 Err(_) => marked[l] = true,
@@ -120,12 +120,13 @@ pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Ou
         if !marked.iter().any(|&m| m) {
             break outputs;
         }
+        // not balanced again: the construction takes sides of any number of segments
         local_splits += ctx.split_marked(&mut leaves, &marked);
-        balance_splits += ctx.balance(&mut leaves);
         rounds += 1;
     };
     budget.check(eps)?;
     let t_construct = start.elapsed().as_secs_f64();
+
     let uncertified: u32 = outputs.iter().map(|o| o.uncertified).sum();
     let mut complex = super::assemble::assemble(outputs, 1e-12 * poly.scale, 0.125 * eps);
     output::name_features(&mut complex, &poly);
@@ -148,6 +149,7 @@ pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Ou
             balance_splits,
             local_splits,
             uncertified,
+            rounds,
             filters: *filters,
         },
     );
@@ -168,6 +170,7 @@ struct Stats {
     balance_splits: usize,
     local_splits: usize,
     uncertified: u32,
+    rounds: usize,
     filters: Filters,
 }
 
@@ -193,6 +196,7 @@ fn add_stats(complex: &mut VoronoiComplex, leaves: &[Node], s: Stats) {
     st.insert("balance_splits".into(), json!(s.balance_splits));
     st.insert("local_splits".into(), json!(s.local_splits));
     st.insert("uncertified_boxes".into(), json!(s.uncertified));
+    st.insert("construction_rounds".into(), json!(s.rounds));
     st.insert(
         "filters".into(),
         json!({"zone": s.filters.zone, "oriented_zones": s.filters.oriented, "two_edge": s.filters.two_edge}),

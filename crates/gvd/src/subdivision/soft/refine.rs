@@ -53,16 +53,20 @@ impl Ctx<'_> {
         }
     }
 
+    /// Whether a node may be split (above the cut-off, within the lattice).
+    pub fn can_split(&self, n: &Node) -> bool {
+        let [x0, y0] = n.ib.lo;
+        let [x1, y1] = n.ib.hi;
+        n.aabb.longest_side() > self.min_box && x1 - x0 >= 2 && y1 - y0 >= 2
+    }
+
     /// The four quarters of a node (`None` at the lattice's limit or the cut-off).
     pub fn split(&self, n: &Node) -> Option<[Node; 4]> {
-        if n.aabb.longest_side() <= self.min_box {
+        if !self.can_split(n) {
             return None;
         }
         let [x0, y0] = n.ib.lo;
         let [x1, y1] = n.ib.hi;
-        if x1 - x0 < 2 || y1 - y0 < 2 {
-            return None;
-        }
         let (xm, ym) = (x0 + (x1 - x0) / 2, y0 + (y1 - y0) / 2);
         let q = |lo: [u64; 2], hi: [u64; 2]| self.node(IBox { lo, hi }, &n.bs.set);
         Some([

@@ -34,7 +34,7 @@ mod order;
 mod output;
 mod phases;
 mod predicates;
-mod segments;
+pub(crate) mod segments;
 
 use crate::complex::VoronoiComplex;
 use crate::geom::{Aabb, Point};

@@ -7,8 +7,8 @@ mod ellipse;
 mod euclidean;
 pub mod implicit;
 mod lp;
-mod polynomial;
 pub mod polygonal;
+mod polynomial;
 
 pub use algebraic::{AlgebraicField, AlgebraicState};
 pub use circle::CircleField;

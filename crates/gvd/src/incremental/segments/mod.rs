@@ -16,7 +16,7 @@
 
 mod arc;
 mod arc_conflicts;
-mod crossings;
+pub(crate) mod crossings;
 mod geometry;
 mod graph;
 mod insert;

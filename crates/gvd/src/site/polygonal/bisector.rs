@@ -77,8 +77,9 @@ impl Polygonal {
     }
 
     /// The lines where two features of one type tie: the perpendicular bisector of two
-    /// corners; for two edges `s₁ = s₂` (with oriented sides) or `s₁ = ±s₂`. Each as a
-    /// point and a direction.
+    /// corners; for two edges `s₁ = s₂` (with oriented sides) or `s₁ = ±s₂`, or the
+    /// normal at their corner when they are collinear. Each as a point and a
+    /// direction.
     pub fn bisector_lines(&self, f: u32, g: u32) -> SmallVec<[(Point, Point); 2]> {
         let mut out = SmallVec::new();
         let line = |w: Point, k: f64, out: &mut SmallVec<[(Point, Point); 2]>| {
@@ -92,6 +93,14 @@ impl Polygonal {
                 line((b - a) * 2.0, b.dot(b) - a.dot(a), &mut out);
             }
             (Shape::Edge(a1, b1), Shape::Edge(a2, b2)) => {
+                if let Some(c) = self.flat_corner(f, g) {
+                    // collinear edges tie on the normal at their corner
+                    let Shape::Corner(at) = self.shape(c) else {
+                        return out;
+                    };
+                    line(b1 - a1, (b1 - a1).dot(at), &mut out);
+                    return out;
+                }
                 let (ff, fg) = (&self.features[f as usize], &self.features[g as usize]);
                 let n = |a: Point, b: Point, side: Option<Point>| {
                     side.unwrap_or_else(|| (b - a).perp() * (1.0 / a.dist(b)))

@@ -84,11 +84,11 @@ pub struct Polygonal {
 pub fn supports(scene: &Scene) -> bool {
     !scene.sites().is_empty()
         && scene.sites().iter().all(|s| {
-        matches!(
-            s.kind,
-            SiteKind::Segment { .. } | SiteKind::Polyline { .. } | SiteKind::Polygon { .. }
-        )
-    })
+            matches!(
+                s.kind,
+                SiteKind::Segment { .. } | SiteKind::Polyline { .. } | SiteKind::Polygon { .. }
+            )
+        })
 }
 
 /// Builds corner features, merging those at the same point.
@@ -208,21 +208,23 @@ impl Polygonal {
                         site: i,
                         kind: other.name().to_string(),
                         message: if inside {
-                            "the soft-predicate engine computes the medial axis of polygons only".into()
+                            "the soft-predicate engine computes the medial axis of polygons only"
+                                .into()
                         } else {
-                            "the soft-predicate engine computes segments, polylines and polygons".into()
+                            "the soft-predicate engine computes segments, polylines and polygons"
+                                .into()
                         },
                     })
                 }
             }
         }
         finish_corner_zones(&mut b);
+        check_conflicts(&b.features)?;
         let d = scene.domain();
-        let scale = d.width().max(d.height()).max(
-            d.to_array()
-                .iter()
-                .fold(0.0f64, |m, v| m.max(v.abs())),
-        );
+        let scale = d
+            .width()
+            .max(d.height())
+            .max(d.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs())));
         Ok(Polygonal {
             features: b.features,
             polygons,
@@ -266,6 +268,12 @@ impl Polygonal {
             return None;
         }
         ff.links.iter().copied().find(|c| fg.links.contains(c))
+    }
+
+    /// The flat corner two collinear edges share, if any.
+    pub fn flat_corner(&self, f: u32, g: u32) -> Option<u32> {
+        self.shared_corner(f, g)
+            .filter(|&c| self.features[c as usize].flat)
     }
 
     /// Inseparability (YSL12 ¶17): at most one feature, or a corner with only edges
@@ -373,7 +381,8 @@ fn finish_corner_zones(b: &mut Builder) {
                         _ => None,
                     })
                     .collect();
-                d.len() == 2 && d[0].cross(d[1]).abs() <= 1e-12 * d[0].norm() * d[1].norm()
+                d.len() == 2
+                    && d[0].cross(d[1]).abs() <= 1e-12 * d[0].norm() * d[1].norm()
                     && d[0].dot(d[1]) < 0.0
             }
         };
@@ -388,4 +397,55 @@ fn finish_corner_zones(b: &mut Builder) {
         };
         b.features[f].zone = cone;
     }
+}
+
+/// Refuses edges that cross, overlap or touch away from a shared corner (the
+/// incremental engine's check, `incremental/segments/crossings.rs`): features are a
+/// boundary complex only for non-crossing sites.
+fn check_conflicts(features: &[Feature]) -> Result<(), Error> {
+    use crate::incremental::segments::crossings::{find_conflict, Conflict};
+    let mut index = vec![u32::MAX; features.len()];
+    let mut points = Vec::new();
+    for (f, feat) in features.iter().enumerate() {
+        if let Shape::Corner(p) = feat.shape {
+            index[f] = points.len() as u32;
+            points.push(p);
+        }
+    }
+    let edges: Vec<usize> = (0..features.len())
+        .filter(|&f| features[f].is_edge())
+        .collect();
+    let segments: Vec<[u32; 2]> = edges
+        .iter()
+        .map(|&e| {
+            [
+                index[features[e].links[0] as usize],
+                index[features[e].links[1] as usize],
+            ]
+        })
+        .collect();
+    let Some(c) = find_conflict(&points, &segments, &[]) else {
+        return Ok(());
+    };
+    let site = |k: usize| features[edges[k]].owners[0].site();
+    let (i, j, what) = match c {
+        Conflict::Cross(i, j) => (i, j, "edges cross"),
+        Conflict::Overlap(i, j) => (i, j, "edges overlap"),
+        Conflict::Touch(i, j) => (
+            i,
+            j,
+            "an endpoint touches the inside of another edge (split it there)",
+        ),
+        Conflict::PointOn(i, _) => (i, i, "a point lies inside an edge"),
+    };
+    let (a, b) = (site(i), site(j));
+    Err(Error::Conflict {
+        site: a.min(b),
+        other: a.max(b),
+        message: if a == b {
+            format!("{what} within site {a}")
+        } else {
+            what.to_string()
+        },
+    })
 }

@@ -23,12 +23,23 @@ pub struct Tol {
     pub tie: f64,
     /// Arcs stray at most this far from their bisector.
     pub trace: f64,
+    /// Ties of less clearance are not via nodes: a box side passing this close to a
+    /// corner would otherwise cut the end of the curve that ends there.
+    pub clear: f64,
 }
 
 /// Whether `q` is a point of the Voronoi curve of `f` and `g`: they tie there, in
 /// their oriented zones, at positive clearance in the free space, and no feature of
 /// `others` is nearer. Returns the clearance.
-pub fn valid_tie(poly: &Polygonal, f: u32, g: u32, q: Point, others: &[u32], tol: f64) -> Option<f64> {
+pub fn valid_tie(
+    poly: &Polygonal,
+    f: u32,
+    g: u32,
+    q: Point,
+    others: &[u32],
+    tol: &Tol,
+) -> Option<f64> {
+    let (clear, tol) = (tol.clear, tol.tie);
     if poly.zone_boundary(f, g) {
         return None;
     }
@@ -38,7 +49,7 @@ pub fn valid_tie(poly: &Polygonal, f: u32, g: u32, q: Point, others: &[u32], tol
         return None;
     }
     let d = df.min(dg);
-    if d <= tol || !ff.oriented_zone.contains(q, tol) || !fg.oriented_zone.contains(q, tol) {
+    if d <= clear || !ff.oriented_zone.contains(q, tol) || !fg.oriented_zone.contains(q, tol) {
         return None;
     }
     if others
@@ -52,17 +63,27 @@ pub fn valid_tie(poly: &Polygonal, f: u32, g: u32, q: Point, others: &[u32], tol
 
 /// The sorted intersection of two sorted lists.
 fn intersect(a: &[u32], b: &[u32]) -> Vec<u32> {
-    a.iter().filter(|x| b.binary_search(x).is_ok()).copied().collect()
+    a.iter()
+        .filter(|x| b.binary_search(x).is_ok())
+        .copied()
+        .collect()
 }
 
 /// The via nodes of every segment: for each pair of the features both leaves keep
 /// (conservative on the shared segment), the valid crossings of their bisector.
-pub fn via_nodes(poly: &Polygonal, leaves: &[Node], segs: &Segments, tol: f64) -> Vec<Vec<(Point, [u32; 2])>> {
+pub fn via_nodes(
+    poly: &Polygonal,
+    leaves: &[Node],
+    segs: &Segments,
+    tol: &Tol,
+) -> Vec<Vec<(Point, [u32; 2])>> {
     segs.segments
         .iter()
         .map(|s| {
             let cands = match s.leaves {
-                [Some(a), Some(b)] => intersect(&leaves[a as usize].bs.set, &leaves[b as usize].bs.set),
+                [Some(a), Some(b)] => {
+                    intersect(&leaves[a as usize].bs.set, &leaves[b as usize].bs.set)
+                }
                 [Some(a), None] | [None, Some(a)] => leaves[a as usize].bs.set.clone(),
                 [None, None] => Vec::new(),
             };
@@ -109,7 +130,13 @@ impl Resolver<'_> {
     fn arc_ok(&self, pair: [u32; 2], p: Point, q: Point, set: &[u32], b: &Aabb) -> bool {
         let m = self.poly.bisector_midpoint(pair[0], pair[1], p, q);
         b.outside_distance(m) <= self.tol.tie
-            && valid_tie(self.poly, pair[0], pair[1], m, set, self.tol.tie).is_some()
+            && valid_tie(self.poly, pair[0], pair[1], m, set, &self.tol).is_some()
+    }
+
+    /// [`Self::arc_ok`] for an arc ending at a corner `c`: arcs shorter than twice
+    /// the least clearance of a via node pass (their middle is closer still).
+    fn corner_arc_ok(&self, pair: [u32; 2], p: Point, c: Point, set: &[u32], b: &Aabb) -> bool {
+        p.dist(c) <= 2.0 * self.tol.clear || self.arc_ok(pair, p, c, set, b)
     }
 
     /// The order of two points along the bisector of `pair`.
@@ -119,13 +146,14 @@ impl Resolver<'_> {
         kp.cmp(&kq).then(tp.total_cmp(&tq))
     }
 
-    /// The concave corner where the curve of two edges ends, when it lies in `b`.
+    /// The concave corner where the curve of two edges ends, when it lies in `b`
+    /// (or as close to it as via nodes may be to a corner).
     fn end_corner(&self, pair: [u32; 2], b: &Aabb) -> Option<(u32, Point)> {
         let c = self.poly.shared_corner(pair[0], pair[1])?;
         let Shape::Corner(at) = self.poly.features[c as usize].shape else {
             return None;
         };
-        half_open(b, at).then_some((c, at))
+        (b.outside_distance(at) <= self.tol.clear).then_some((c, at))
     }
 
     /// The Voronoi vertex test (¶22): the points of `b` equidistant from three of its
@@ -163,18 +191,26 @@ impl Resolver<'_> {
         let lo = d.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = d.iter().copied().fold(0.0, f64::max);
         hi - lo <= tol
-            && lo > tol
-            && t.iter()
-                .all(|&f| self.poly.features[f as usize].oriented_zone.contains(q, tol))
-            && set.iter().all(|&h| {
-                t.contains(&h) || self.poly.features[h as usize].distance(q) >= lo - tol
+            && lo > self.tol.clear
+            && t.iter().all(|&f| {
+                self.poly.features[f as usize]
+                    .oriented_zone
+                    .contains(q, tol)
             })
+            && set
+                .iter()
+                .all(|&h| t.contains(&h) || self.poly.features[h as usize].distance(q) >= lo - tol)
             && self.poly.free(q)
     }
 
     /// Resolves leaf `n` with its boundary nodes `ports`: `Err` when they fit no
     /// pattern and the box may still be split.
-    pub fn resolve(&self, n: &Node, ports: &[Port], can_split: bool) -> Result<LeafOutput, Unresolved> {
+    pub fn resolve(
+        &self,
+        n: &Node,
+        ports: &[Port],
+        can_split: bool,
+    ) -> Result<LeafOutput, Unresolved> {
         let mut out = LeafOutput::default();
         if ports.is_empty() {
             return Ok(out);
@@ -241,10 +277,14 @@ impl Resolver<'_> {
             return Some(out);
         }
         for (at, t) in &vs {
-            out.vertices.push(FoundVertex {
-                at: *at,
-                sites: sorted(*t),
-            });
+            // a curve crossing the normal at a flat corner: the corner is a generator
+            let mut sites = sorted(*t);
+            for (f, g) in [(t[0], t[1]), (t[0], t[2]), (t[1], t[2])] {
+                sites.extend(self.poly.flat_corner(f, g));
+            }
+            sites.sort_unstable();
+            sites.dedup();
+            out.vertices.push(FoundVertex { at: *at, sites });
         }
         let holds = |t: &[u32; 3], pair: [u32; 2]| t.contains(&pair[0]) && t.contains(&pair[1]);
         let mut degree = vec![0usize; vs.len()];
@@ -284,7 +324,7 @@ impl Resolver<'_> {
                 }
                 // a curve without a node must end at its edges' corner in the box
                 let (c, at) = self.end_corner(pair, b)?;
-                if !self.arc_ok(pair, vs[v].0, at, set, b) {
+                if !self.corner_arc_ok(pair, vs[v].0, at, set, b) {
                     return None;
                 }
                 let k = out.vertices.len() as u32;
@@ -292,7 +332,12 @@ impl Resolver<'_> {
                     at,
                     sites: sorted([c, pair[0], pair[1]]),
                 });
-                out.pieces.push(self.piece(pair, [End::Vertex(v as u32), End::Vertex(k)], vs[v].0, at));
+                out.pieces.push(self.piece(
+                    pair,
+                    [End::Vertex(v as u32), End::Vertex(k)],
+                    vs[v].0,
+                    at,
+                ));
                 degree[v] += 1;
             }
         }
@@ -312,12 +357,13 @@ impl Resolver<'_> {
             while i < mine.len() {
                 if i + 1 < mine.len() && self.arc_ok(pair, mine[i].at, mine[i + 1].at, set, b) {
                     let ends = [End::Port(mine[i].id), End::Port(mine[i + 1].id)];
-                    out.pieces.push(self.piece(pair, ends, mine[i].at, mine[i + 1].at));
+                    out.pieces
+                        .push(self.piece(pair, ends, mine[i].at, mine[i + 1].at));
                     i += 2;
                     continue;
                 }
                 let (c, at) = self.end_corner(pair, b)?;
-                if !self.arc_ok(pair, mine[i].at, at, set, b)
+                if !self.corner_arc_ok(pair, mine[i].at, at, set, b)
                     || out.vertices.iter().any(|v| v.at == at)
                 {
                     return None;
@@ -327,7 +373,12 @@ impl Resolver<'_> {
                     at,
                     sites: sorted([c, pair[0], pair[1]]),
                 });
-                out.pieces.push(self.piece(pair, [End::Port(mine[i].id), End::Vertex(k)], mine[i].at, at));
+                out.pieces.push(self.piece(
+                    pair,
+                    [End::Port(mine[i].id), End::Vertex(k)],
+                    mine[i].at,
+                    at,
+                ));
                 i += 1;
             }
         }

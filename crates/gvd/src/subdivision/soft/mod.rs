@@ -74,9 +74,7 @@ pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Ou
     let domain = scene.domain();
     let root = grown(&domain);
     let lattice = Lattice::new(&root, None);
-    let eps = scene
-        .epsilon()
-        .max(super::resolution(&root, &lattice));
+    let eps = scene.epsilon().max(super::resolution(&root, &lattice));
     let budget = Budget::new(limits, poly.features.len());
     let ctx = Ctx {
         poly: &poly,
@@ -95,6 +93,7 @@ pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Ou
     let tol = Tol {
         tie: 1e-9 * poly.scale,
         trace: 0.25 * eps,
+        clear: (1e-3 * eps).max(64e-9 * poly.scale),
     };
     let resolver = Resolver {
         poly: &poly,
@@ -105,7 +104,7 @@ pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Ou
     let mut rounds = 0;
     let outputs = loop {
         let segs = segments::build(&refine::as_leaves(&leaves), &lattice);
-        let nodes = construct::via_nodes(&poly, &leaves, &segs, tol.tie);
+        let nodes = construct::via_nodes(&poly, &leaves, &segs, &tol);
         let last = rounds >= MAX_ROUNDS || budget.exhausted();
         let mut marked = vec![false; leaves.len()];
         let mut outputs = Vec::with_capacity(leaves.len());
@@ -180,8 +179,14 @@ fn add_stats(complex: &mut VoronoiComplex, leaves: &[Node], s: Stats) {
     st.insert("algorithm".into(), json!("soft predicates (YSL12)"));
     st.insert("seconds".into(), json!(s.start.elapsed().as_secs_f64()));
     st.insert("seconds_subdivision".into(), json!(s.t_subdivide));
-    st.insert("seconds_refinement".into(), json!(s.t_refine - s.t_subdivide));
-    st.insert("seconds_construction".into(), json!(s.t_construct - s.t_refine));
+    st.insert(
+        "seconds_refinement".into(),
+        json!(s.t_refine - s.t_subdivide),
+    );
+    st.insert(
+        "seconds_construction".into(),
+        json!(s.t_construct - s.t_refine),
+    );
     st.insert("resolution".into(), json!(s.eps));
     if s.eps > s.epsilon {
         st.insert("epsilon_floored_from".into(), json!(s.epsilon));
@@ -192,7 +197,10 @@ fn add_stats(complex: &mut VoronoiComplex, leaves: &[Node], s: Stats) {
         json!(leaves.iter().filter(|n| n.candidate()).count()),
     );
     st.insert("leaves".into(), json!(leaves.len()));
-    st.insert("leaves_after_subdivision".into(), json!(s.visited_subdivision));
+    st.insert(
+        "leaves_after_subdivision".into(),
+        json!(s.visited_subdivision),
+    );
     st.insert("balance_splits".into(), json!(s.balance_splits));
     st.insert("local_splits".into(), json!(s.local_splits));
     st.insert("uncertified_boxes".into(), json!(s.uncertified));

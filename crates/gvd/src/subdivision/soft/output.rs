@@ -58,9 +58,11 @@ pub fn to_sites(c: VoronoiComplex) -> VoronoiComplex {
                 incident[v].push(k);
             }
         }
-        let Some(v) = (0..vertices.len())
-            .find(|&v| incident[v].len() == 2 && vertices[v].sites.len() < 3 && incident[v][0] != incident[v][1])
-        else {
+        let Some(v) = (0..vertices.len()).find(|&v| {
+            incident[v].len() == 2
+                && vertices[v].sites.len() < 3
+                && incident[v][0] != incident[v][1]
+        }) else {
             break;
         };
         let (a, b) = (incident[v][0], incident[v][1]);

@@ -30,7 +30,7 @@ pub fn name_features(c: &mut VoronoiComplex, poly: &Polygonal) {
 /// sites are joined into one edge.
 pub fn to_sites(c: VoronoiComplex) -> VoronoiComplex {
     let site = |g: &Generator| Generator::Site(g.site());
-    let mut edges: Vec<Edge> = c
+    let edges: Vec<Edge> = c
         .edges
         .into_iter()
         .map(|mut e| {
@@ -39,7 +39,7 @@ pub fn to_sites(c: VoronoiComplex) -> VoronoiComplex {
         })
         .filter(|e| e.sites[0] != e.sites[1])
         .collect();
-    let mut vertices: Vec<Vertex> = c
+    let vertices: Vec<Vertex> = c
         .vertices
         .into_iter()
         .map(|mut v| {
@@ -50,56 +50,57 @@ pub fn to_sites(c: VoronoiComplex) -> VoronoiComplex {
             v
         })
         .collect();
-    // join edges through vertices of two edges and two sites
-    loop {
-        let mut incident: Vec<Vec<usize>> = vec![Vec::new(); vertices.len()];
-        for (k, e) in edges.iter().enumerate() {
-            for v in [e.from, e.to].into_iter().flatten() {
-                incident[v].push(k);
-            }
+    // join edges through vertices of two edges and fewer than three sites
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); vertices.len()];
+    for (k, e) in edges.iter().enumerate() {
+        for v in [e.from, e.to].into_iter().flatten() {
+            incident[v].push(k);
         }
-        let Some(v) = (0..vertices.len()).find(|&v| {
-            incident[v].len() == 2
-                && vertices[v].sites.len() < 3
-                && incident[v][0] != incident[v][1]
-        }) else {
-            break;
-        };
-        let (a, b) = (incident[v][0], incident[v][1]);
-        let mut ea = edges[a].clone();
-        let mut eb = edges[b].clone();
-        if ea.to != Some(v) {
-            ea.points.reverse();
-            std::mem::swap(&mut ea.from, &mut ea.to);
-        }
-        if eb.from != Some(v) {
-            eb.points.reverse();
-            std::mem::swap(&mut eb.from, &mut eb.to);
-        }
-        let mut points = ea.points.clone();
-        points.extend(eb.points.iter().skip(1).copied());
-        let joined = Edge {
-            sites: ea.sites,
-            from: ea.from,
-            to: eb.to,
-            points,
-            bisector: Vec::new(),
-        };
-        // a loop closed through v: both ends were v
-        let joined = if joined.from == Some(v) && joined.to == Some(v) {
-            Edge {
-                from: None,
-                to: None,
-                ..joined
-            }
-        } else {
-            joined
-        };
-        let (hi, lo) = (a.max(b), a.min(b));
-        edges.remove(hi);
-        edges[lo] = joined;
-        vertices[v].sites.clear();
     }
+    let through = |v: Option<usize>| v.filter(|&v| incident[v].len() == 2 && vertices[v].sites.len() < 3);
+    let mut used = vec![false; edges.len()];
+    let mut out: Vec<Edge> = Vec::with_capacity(edges.len());
+    let walk = |k: usize, forward: bool, used: &mut Vec<bool>, closed: bool| {
+        let flip = |e: &Edge, fwd: bool| {
+            let mut e = e.clone();
+            if !fwd {
+                e.points.reverse();
+                std::mem::swap(&mut e.from, &mut e.to);
+            }
+            e
+        };
+        let mut chain = flip(&edges[k], forward);
+        used[k] = true;
+        while let Some(v) = through(chain.to) {
+            let Some(&next) = incident[v].iter().find(|&&j| !used[j]) else {
+                break;
+            };
+            used[next] = true;
+            let e = flip(&edges[next], edges[next].from == Some(v));
+            chain.points.extend(e.points.iter().skip(1).copied());
+            chain.to = e.to;
+        }
+        if closed {
+            chain.from = None;
+            chain.to = None;
+        }
+        chain
+    };
+    for k in 0..edges.len() {
+        for forward in [true, false] {
+            let start = if forward { edges[k].from } else { edges[k].to };
+            if !used[k] && through(start).is_none() {
+                out.push(walk(k, forward, &mut used, false));
+            }
+        }
+    }
+    for k in 0..edges.len() {
+        if !used[k] {
+            out.push(walk(k, true, &mut used, true));
+        }
+    }
+    // the vertices joined through are no longer ends: dropped below
+    let edges = out;
     drop_unused(vertices, edges, c.stats)
 }
 

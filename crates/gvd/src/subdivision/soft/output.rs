@@ -57,7 +57,8 @@ pub fn to_sites(c: VoronoiComplex) -> VoronoiComplex {
             incident[v].push(k);
         }
     }
-    let through = |v: Option<usize>| v.filter(|&v| incident[v].len() == 2 && vertices[v].sites.len() < 3);
+    let through =
+        |v: Option<usize>| v.filter(|&v| incident[v].len() == 2 && vertices[v].sites.len() < 3);
     let mut used = vec![false; edges.len()];
     let mut out: Vec<Edge> = Vec::with_capacity(edges.len());
     let walk = |k: usize, forward: bool, used: &mut Vec<bool>, closed: bool| {

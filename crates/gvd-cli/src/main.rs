@@ -91,6 +91,16 @@ struct ComputeArgs {
     /// pieces in Held's offset-parameter form with their clearance ranges.
     #[arg(long)]
     bisectors: bool,
+    /// Soft-predicate engine (segments, polylines, polygons with `--engine
+    /// subdivision`): no zone filter, every feature within reach belongs to a box.
+    #[arg(long)]
+    no_zone_filter: bool,
+    /// Soft-predicate engine: zones Z(f) instead of the oriented zones Z*(f).
+    #[arg(long)]
+    no_oriented_zones: bool,
+    /// Soft-predicate engine: no two-edge filter in C1 (Yap et al. ¶25(a)).
+    #[arg(long)]
+    no_two_edge_filter: bool,
 }
 
 #[derive(Args)]
@@ -217,6 +227,11 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
             limits: gvd::Limits {
                 max_boxes: args.max_boxes.map(saturating_usize),
                 max_points: args.max_points.map(saturating_usize),
+            },
+            soft: gvd::SoftFilters {
+                zone: !args.no_zone_filter,
+                oriented: !args.no_oriented_zones,
+                two_edge: !args.no_two_edge_filter,
             },
             ..Default::default()
         },

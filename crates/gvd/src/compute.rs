@@ -18,7 +18,9 @@ pub enum Engine {
     /// subdivision engine otherwise.
     #[default]
     Auto,
-    /// Subdivision over distance fields (Emiris et al. 2013): every supported site kind.
+    /// Subdivision: over distance fields (EMM13) for every supported site kind, by
+    /// soft predicates over corner and edge features (YSL12) for scenes of segments,
+    /// polylines and polygons.
     Subdivision,
     /// Topology-oriented incremental construction: Euclidean points, segments,
     /// polylines and polygons.
@@ -50,6 +52,9 @@ pub struct SubdivisionOptions {
     /// The boxes and output points the subdivision engine may use (defaults grow with
     /// the number of sites); running out gives [`Error::Budget`].
     pub limits: subdivision::Limits,
+    /// The filters of the soft-predicate algorithm (YSL12), which computes scenes of
+    /// segments, polylines and polygons.
+    pub soft: subdivision::soft::Filters,
 }
 
 /// Knobs of the incremental engine (SI92, Hel01).
@@ -132,6 +137,17 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         }
         (Engine::Auto, None) => check_one_engine_takes_all(scene)?,
         _ => {}
+    }
+    if options.engine == Engine::Subdivision && crate::site::polygonal::supports(scene) {
+        let out = subdivision::soft::run_scene(
+            scene,
+            &options.subdivision.soft,
+            &options.subdivision.limits,
+        )?;
+        return Ok(Computation {
+            complex: out.complex,
+            boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
+        });
     }
     if scene.mode() == Mode::MedialAxis {
         if let Some(i) = scene

@@ -57,6 +57,7 @@ pub use geom::{Aabb, Point};
 pub use offset::{offset, offset_scene, Offset};
 pub use scene::{Metric, Mode, Scene, SceneBuilder, Site, SiteKind};
 pub use site::FieldOptions;
+pub use subdivision::soft::Filters as SoftFilters;
 pub use subdivision::Limits;
 pub use verify::{verify, Report, VerifyOptions};
 

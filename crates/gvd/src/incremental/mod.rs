@@ -14,7 +14,7 @@
 mod bisector_form;
 mod points;
 mod scene_adapter;
-mod segments_arcs;
+pub(crate) mod segments_arcs;
 
 pub use points::{add_point_bisectors, points_voronoi, Face, PointDiagram};
 pub use scene_adapter::{scene_voronoi, supports, supports_site};

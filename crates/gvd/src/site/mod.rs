@@ -7,6 +7,7 @@ mod ellipse;
 mod euclidean;
 pub mod implicit;
 mod lp;
+pub mod polygonal;
 mod polynomial;
 
 pub use algebraic::{AlgebraicField, AlgebraicState};

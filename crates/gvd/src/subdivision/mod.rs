@@ -8,6 +8,7 @@ mod filter;
 mod locate;
 mod resolve;
 mod segments;
+pub mod soft;
 mod trace;
 mod tree;
 

@@ -1,0 +1,212 @@
+//! The soft-predicate subdivision algorithm of Yap, Sharma and Lien (YSL12, §IV–VI)
+//! for polygonal sets: the Voronoi complex of segments, polylines and polygons from
+//! their corner and edge features ([`crate::site::polygonal`]), purely numerically.
+//!
+//! Three phases, one file each: subdivision and refinement ([`refine`]: boxes split
+//! until `C = C0 ∧ C1 ∧ C2` holds ([`predicate`]), then candidate boxes balanced), and
+//! construction ([`construct`]: via nodes on the side segments, the Voronoi vertex
+//! test, arcs). The leaves' sides and the stitching of arcs into edges are the generic
+//! engine's ([`super::segments`], [`super::assemble`]); [`output`] names the
+//! generators per mode and clips to the domain.
+
+pub mod construct;
+pub mod output;
+pub mod predicate;
+pub mod refine;
+
+use super::budget::{Budget, Limits};
+use super::segments;
+use super::tree::Lattice;
+use super::Output;
+use crate::complex::VoronoiComplex;
+use crate::error::Error;
+use crate::geom::{Aabb, Point};
+use crate::scene::{Mode, Scene};
+use crate::site::polygonal::Polygonal;
+use construct::{Resolver, Tol};
+use refine::{Ctx, Node};
+use serde_json::json;
+use std::time::Instant;
+
+/// The filters of YSL12 ¶25, each a switch so that its effect can be measured (all on
+/// by default: they change the number of boxes, not the diagram).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Filters {
+    /// The zone filter: a feature belongs to a box only if its zone meets the box's
+    /// influence disc (¶25(b)).
+    pub zone: bool,
+    /// With the zone filter, use the oriented zones Z*(f) (empty at concave corners)
+    /// instead of the zones Z(f).
+    pub oriented: bool,
+    /// C1 also accepts a box of two edges (¶25(a)).
+    pub two_edge: bool,
+}
+
+impl Default for Filters {
+    fn default() -> Self {
+        Filters {
+            zone: true,
+            oriented: true,
+            two_edge: true,
+        }
+    }
+}
+
+/// Rounds of local splitting of unresolved boxes before the cut-off decides.
+const MAX_ROUNDS: usize = 48;
+
+/// The box the subdivision runs over: the domain grown by small, unequal fractions of
+/// its size on each side, so that no box side falls on a line of symmetry of the
+/// input (where a bisector could run along a side).
+fn grown(d: &Aabb) -> Aabb {
+    let (w, h) = (d.width(), d.height());
+    Aabb::new(
+        Point::new(d.min.x - w * 0.003_917, d.min.y - h * 0.002_731),
+        Point::new(d.max.x + w * 0.001_373, d.max.y + h * 0.004_129),
+    )
+}
+
+/// Computes the diagram of a polygonal scene by YSL12, or refuses a site it cannot
+/// take; [`Error::Budget`] when the boxes or points run out.
+pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Output, Error> {
+    let start = Instant::now();
+    let poly = Polygonal::new(scene)?;
+    let domain = scene.domain();
+    let root = grown(&domain);
+    let lattice = Lattice::new(&root, None);
+    let eps = scene.epsilon().max(super::resolution(&root, &lattice));
+    let budget = Budget::new(limits, poly.features.len());
+    let ctx = Ctx {
+        poly: &poly,
+        lattice: &lattice,
+        filters,
+        min_box: 0.5 * eps,
+        budget: &budget,
+    };
+    let mut leaves = ctx.subdivide();
+    budget.check(eps)?;
+    let t_subdivide = start.elapsed().as_secs_f64();
+    let visited_subdivision = leaves.len();
+    let balance_splits = ctx.balance(&mut leaves);
+    budget.check(eps)?;
+    let t_refine = start.elapsed().as_secs_f64();
+    let tol = Tol {
+        tie: 1e-9 * poly.scale,
+        trace: 0.25 * eps,
+        clear: (1e-3 * eps).max(64e-9 * poly.scale),
+    };
+    let resolver = Resolver {
+        poly: &poly,
+        tol,
+        budget: &budget,
+    };
+    let mut local_splits = 0;
+    let mut rounds = 0;
+    let outputs = loop {
+        let segs = segments::build(&refine::as_leaves(&leaves), &lattice);
+        let nodes = construct::via_nodes(&poly, &leaves, &segs, &tol);
+        let last = rounds >= MAX_ROUNDS || budget.exhausted();
+        let mut marked = vec![false; leaves.len()];
+        let mut outputs = Vec::with_capacity(leaves.len());
+        for (l, n) in leaves.iter().enumerate() {
+            let ports = construct::ports_of(l, &segs, &nodes);
+            let can_split = !last && ctx.can_split(n);
+            match resolver.resolve(n, &ports, can_split) {
+                Ok(o) => outputs.push(o),
+                Err(_) => marked[l] = true,
+            }
+        }
+        if !marked.iter().any(|&m| m) {
+            break outputs;
+        }
+        // not balanced again: the construction takes sides of any number of segments
+        local_splits += ctx.split_marked(&mut leaves, &marked);
+        rounds += 1;
+    };
+    budget.check(eps)?;
+    let t_construct = start.elapsed().as_secs_f64();
+
+    let uncertified: u32 = outputs.iter().map(|o| o.uncertified).sum();
+    let mut complex = super::assemble::assemble(outputs, 1e-12 * poly.scale, 0.125 * eps);
+    output::name_features(&mut complex, &poly);
+    let mut complex = output::clip(complex, &domain);
+    if scene.mode() == Mode::Voronoi {
+        complex = output::to_sites(complex);
+    }
+    add_stats(
+        &mut complex,
+        &leaves,
+        Stats {
+            start,
+            t_subdivide,
+            t_refine,
+            t_construct,
+            eps,
+            epsilon: scene.epsilon(),
+            features: poly.features.len(),
+            visited_subdivision,
+            balance_splits,
+            local_splits,
+            uncertified,
+            rounds,
+            filters: *filters,
+        },
+    );
+    let leaves = refine::as_leaves(&leaves);
+    Ok(Output { complex, leaves })
+}
+
+/// The figures of a run.
+struct Stats {
+    start: Instant,
+    t_subdivide: f64,
+    t_refine: f64,
+    t_construct: f64,
+    eps: f64,
+    epsilon: f64,
+    features: usize,
+    visited_subdivision: usize,
+    balance_splits: usize,
+    local_splits: usize,
+    uncertified: u32,
+    rounds: usize,
+    filters: Filters,
+}
+
+fn add_stats(complex: &mut VoronoiComplex, leaves: &[Node], s: Stats) {
+    let st = &mut complex.stats;
+    st.insert("engine".into(), json!("subdivision"));
+    st.insert("algorithm".into(), json!("soft predicates (YSL12)"));
+    st.insert("seconds".into(), json!(s.start.elapsed().as_secs_f64()));
+    st.insert("seconds_subdivision".into(), json!(s.t_subdivide));
+    st.insert(
+        "seconds_refinement".into(),
+        json!(s.t_refine - s.t_subdivide),
+    );
+    st.insert(
+        "seconds_construction".into(),
+        json!(s.t_construct - s.t_refine),
+    );
+    st.insert("resolution".into(), json!(s.eps));
+    if s.eps > s.epsilon {
+        st.insert("epsilon_floored_from".into(), json!(s.epsilon));
+    }
+    st.insert("features".into(), json!(s.features));
+    st.insert(
+        "boxes".into(),
+        json!(leaves.iter().filter(|n| n.candidate()).count()),
+    );
+    st.insert("leaves".into(), json!(leaves.len()));
+    st.insert(
+        "leaves_after_subdivision".into(),
+        json!(s.visited_subdivision),
+    );
+    st.insert("balance_splits".into(), json!(s.balance_splits));
+    st.insert("local_splits".into(), json!(s.local_splits));
+    st.insert("uncertified_boxes".into(), json!(s.uncertified));
+    st.insert("construction_rounds".into(), json!(s.rounds));
+    st.insert(
+        "filters".into(),
+        json!({"zone": s.filters.zone, "oriented_zones": s.filters.oriented, "two_edge": s.filters.two_edge}),
+    );
+}

@@ -23,6 +23,8 @@ pub enum Engine {
     /// Topology-oriented incremental construction: Euclidean points, segments,
     /// polylines and polygons.
     Incremental,
+    /// Bisectors in parameter space (HREK07): scenes of `bezier` and `bspline` curves.
+    Freeform,
 }
 
 /// How to compute a diagram: the engine, and each engine's own knobs.
@@ -88,6 +90,15 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 /// [`compute`], also returning the subdivision's leaves (none for the incremental engine).
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     check_medial_axis(scene)?;
+    if options.engine == Engine::Freeform
+        || (options.engine == Engine::Auto && crate::freeform::supports(scene))
+    {
+        let complex = crate::freeform::compute(scene)?;
+        return Ok(Computation {
+            complex,
+            boxes: Vec::new(),
+        });
+    }
     let points = euclidean_points(scene);
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {

@@ -1,0 +1,169 @@
+//! The free-form engine (HREK07): Voronoi diagrams of rational Bézier and B-spline
+//! curves by bisectors in parameter space, without approximating the curves.
+//!
+//! Phases, one file each: the curves are cut into C1 rational Bézier spans and corners
+//! ([`pieces`]); every pair of features that may share a Voronoi edge (a conservative
+//! grid test, [`candidates`]) gets its bisector: for two spans the zero set of
+//! `F3(t, r)` ([`bisector`]) split into monotone branches ([`trace`]), for a corner and
+//! a span the rational point/curve bisector `B(t)` (eq. 29), for two corners their
+//! perpendicular bisector; each branch is trimmed by the orientation and curvature
+//! constraints and the lower envelope ([`trim`]); the runs are assembled into the
+//! complex ([`assemble`]). Distances to the features are certified univariate root
+//! isolations ([`nearest`]).
+//!
+//! A corner is *active* when its normal cone `{v : ⟨v, t_in⟩ ≥ 0, ⟨v, t_out⟩ ≤ 0}`
+//! reaches the side of the curve where the diagram lies; the cone's middle direction
+//! `t_in − t_out` is on the left of the arriving tangent iff `t_in × t_out < 0`.
+
+mod assemble;
+mod bisector;
+mod candidates;
+mod nearest;
+mod pieces;
+mod trace;
+mod trim;
+
+use crate::cells;
+use crate::complex::VoronoiComplex;
+use crate::error::Error;
+use crate::geom::Point;
+use crate::scene::{Scene, SiteKind};
+use nearest::Features;
+use pieces::Feature;
+use trim::{Constraints, Eval, Run, Trimmer};
+
+pub use trim::Constraints as TrimConstraints;
+
+/// True when every site is a free-form curve (`bezier`, `bspline`).
+pub fn supports(scene: &Scene) -> bool {
+    !scene.sites().is_empty()
+        && scene
+            .sites()
+            .iter()
+            .all(|s| matches!(s.kind, SiteKind::Bezier { .. } | SiteKind::Bspline { .. }))
+}
+
+/// Most samples evaluated over all bisector branches of one scene.
+const MAX_SAMPLES: usize = 4_000_000;
+
+/// The Voronoi diagram of a scene of free-form curves.
+pub fn compute(scene: &Scene) -> Result<VoronoiComplex, Error> {
+    compute_with(scene, Constraints::default())
+}
+
+/// [`compute`] with some trimming constraints switched off (for tests).
+pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiComplex, Error> {
+    let start = std::time::Instant::now();
+    if let Some((i, s)) = scene
+        .sites()
+        .iter()
+        .enumerate()
+        .find(|(_, s)| !matches!(s.kind, SiteKind::Bezier { .. } | SiteKind::Bspline { .. }))
+    {
+        return Err(Error::Unsupported {
+            site: i,
+            kind: s.kind.name().to_string(),
+            message: "the freeform engine computes bezier and bspline curves only (so far)".into(),
+        });
+    }
+    let pieces = pieces::pieces(scene);
+    if pieces.spans.is_empty() {
+        return Err(Error::scene("sites", "no free-form curve to compute"));
+    }
+    let features = Features::new(&pieces);
+    let domain = scene.domain();
+    let scale = domain.longest_side();
+    let trimmer = Trimmer {
+        features: &features,
+        domain,
+        chord: 0.25 * scene.epsilon(),
+        step: scale / 64.0,
+        tol: 1e-9 * scale,
+        constraints,
+        samples: std::cell::Cell::new(0),
+        max_samples: MAX_SAMPLES,
+    };
+    let pairs = candidates::pairs(&features, &domain);
+    let mut runs: Vec<Run> = Vec::new();
+    let mut stats = trace::TraceStats::default();
+    let mut branches = 0usize;
+    let forms = &features.forms;
+    for &[f, g] in &pairs {
+        match (f, g) {
+            (Feature::Span(a), Feature::Span(b)) => {
+                let (ca, cb) = (&pieces.spans[a].curve, &pieces.spans[b].curve);
+                let f3 = bisector::f3(&forms[a], &forms[b]);
+                for br in trace::branches(&f3, &mut stats) {
+                    branches += 1;
+                    let eval = |t: f64| -> Option<Eval> {
+                        let r = trace::branch_at(&f3, &br, t)?;
+                        let p = bisector::normals_meet(ca, t, cb, r)?;
+                        Some(Eval {
+                            p,
+                            d: 0.5 * (p.dist(ca.eval(t)) + p.dist(cb.eval(r))),
+                            feet: [Some(t), Some(r)],
+                        })
+                    };
+                    runs.extend(trimmer.trim([f, g], &eval, br.slab.0, br.slab.1, 8));
+                }
+            }
+            (Feature::Corner(c), Feature::Span(b)) | (Feature::Span(b), Feature::Corner(c)) => {
+                let p = pieces.corners[c].at;
+                let cb = &pieces.spans[b].curve;
+                branches += 1;
+                let eval = |t: f64| -> Option<Eval> {
+                    let q = bisector::point_curve(cb, t, p)?;
+                    Some(Eval {
+                        p: q,
+                        d: q.dist(p),
+                        feet: [None, Some(t)],
+                    })
+                };
+                runs.extend(trimmer.trim([Feature::Corner(c), Feature::Span(b)], &eval, 0.0, 1.0, 32));
+            }
+            (Feature::Corner(c0), Feature::Corner(c1)) => {
+                let (p0, p1) = (pieces.corners[c0].at, pieces.corners[c1].at);
+                let m = (p0 + p1) * 0.5;
+                let dir = (p1 - p0).perp();
+                let Some((s0, s1)) = domain.line_range(m, dir) else { continue };
+                branches += 1;
+                let eval = |s: f64| -> Option<Eval> {
+                    let q = m + dir * s;
+                    Some(Eval {
+                        p: q,
+                        d: q.dist(p0),
+                        feet: [None, None],
+                    })
+                };
+                runs.extend(trimmer.trim([f, g], &eval, s0, s1, 16));
+            }
+        }
+    }
+    if trimmer.samples.get() >= MAX_SAMPLES {
+        return Err(Error::Budget {
+            what: "points".into(),
+            limit: MAX_SAMPLES,
+            message: format!(
+                "the freeform engine evaluated {MAX_SAMPLES} bisector samples without finishing (a scene of many or very wiggly curves?)"
+            ),
+        });
+    }
+    let (mut complex, loose) = assemble::assemble(&pieces, &runs, 1e-7 * scale);
+    if !pieces.featured {
+        complex.cells = cells::build_cells(&complex, &domain, &|q: Point| {
+            features.nearest(q).map_or(0, |(f, _)| pieces.site(f))
+        });
+    }
+    let s = &mut complex.stats;
+    s.insert("engine".into(), serde_json::json!("freeform"));
+    s.insert("spans".into(), serde_json::json!(pieces.spans.len()));
+    s.insert("corners".into(), serde_json::json!(features.active.len()));
+    s.insert("pairs".into(), serde_json::json!(pairs.len()));
+    s.insert("branches".into(), serde_json::json!(branches));
+    s.insert("special_points".into(), serde_json::json!(stats.special));
+    s.insert("uncertified_special_points".into(), serde_json::json!(stats.uncertified));
+    s.insert("samples".into(), serde_json::json!(trimmer.samples.get()));
+    s.insert("loose_ends".into(), serde_json::json!(loose));
+    s.insert("seconds".into(), serde_json::json!(start.elapsed().as_secs_f64()));
+    Ok(complex)
+}

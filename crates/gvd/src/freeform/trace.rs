@@ -1,0 +1,146 @@
+//! The zero set of `F3(t, r)` over `[0, 1]²` split into t- and r-monotone branches
+//! (HREK07 §4). The special points are the edge points (roots of `F3` on the four sides,
+//! by univariate isolation) and the turning points `F3 = ∂F3/∂t = 0`, `F3 = ∂F3/∂r = 0`
+//! (and singular points among them) by the certified 2-D solver `solve_system`. Their
+//! `t` values cut the square into slabs; inside a slab the zero set is a fixed number of
+//! disjoint monotone graphs `r = gₖ(t)` (no turning, crossing or edge point inside), so
+//! the `k`-th root of `F3(t, ·)` belongs to branch `k` at every `t` of the slab — the
+//! vertical-line connectivity of Keyser et al. (cited in HREK07 §4). A branch's ends are
+//! joined to the nearest root (or special point) on the slab's sides.
+
+use crate::geom::{Aabb, Axis, Point};
+use crate::num::bernstein::Bernstein2;
+use crate::num::roots::{isolate, refine, solve_system, SystemOptions};
+
+/// Special points closer than this in `t` share a slab side.
+const SAME_T: f64 = 1e-10;
+
+/// One monotone branch of the zero set inside a slab.
+#[derive(Clone, Debug)]
+pub struct Branch {
+    /// The slab `[t0, t1]`.
+    pub slab: (f64, f64),
+    /// Which root of `F3(t, ·)` (in increasing `r`) inside the slab.
+    pub index: usize,
+    /// How many roots the slab has.
+    pub count: usize,
+    /// `r` at the slab's sides (the nodes the branch ends at), if found.
+    pub ends: (Option<f64>, Option<f64>),
+}
+
+/// The roots in `r` of `F3(t, ·)`, sorted (uncertified clusters by their midpoints).
+pub fn roots_at(f: &Bernstein2, t: f64) -> Vec<f64> {
+    let col = f.restrict(Axis::X, t);
+    isolate(&col, 1e-13)
+        .into_iter()
+        .map(|root| {
+            if root.certified {
+                refine(&col, root.lo, root.hi)
+            } else {
+                0.5 * (root.lo + root.hi)
+            }
+        })
+        .collect()
+}
+
+/// The `r` of branch `b` at `t` inside its slab (`None` when the root count differs,
+/// which only rounding near a special point causes).
+pub fn branch_at(f: &Bernstein2, b: &Branch, t: f64) -> Option<f64> {
+    if t <= b.slab.0 {
+        return b.ends.0;
+    }
+    if t >= b.slab.1 {
+        return b.ends.1;
+    }
+    let roots = roots_at(f, t);
+    (roots.len() == b.count).then(|| roots[b.index])
+}
+
+/// How the work went: the number of uncertified special clusters.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TraceStats {
+    /// Special points found (edge points and turning points).
+    pub special: usize,
+    /// Of which uncertified clusters of the 2-D solver.
+    pub uncertified: usize,
+}
+
+/// The monotone branches of `F3 = 0` over `[0, 1]²`.
+pub fn branches(f: &Bernstein2, stats: &mut TraceStats) -> Vec<Branch> {
+    if f.range().excludes_zero() {
+        return Vec::new();
+    }
+    let mut special: Vec<Point> = Vec::new();
+    // edge points on the sides r = 0 and r = 1 (t = 0, 1 are slab sides anyway)
+    for at in [0, 1] {
+        let side = f.edge(Axis::Y, at);
+        for root in isolate(&side, 1e-13) {
+            let t = if root.certified {
+                refine(&side, root.lo, root.hi)
+            } else {
+                0.5 * (root.lo + root.hi)
+            };
+            special.push(Point::new(t, at as f64));
+        }
+    }
+    // turning points
+    let poly = f.to_poly();
+    let unit = Aabb::from_array([0.0, 0.0, 1.0, 1.0]);
+    let opts = SystemOptions {
+        min_size: 1e-8,
+        max_boxes: 1 << 12,
+    };
+    for axis in [0, 1] {
+        for root in solve_system(&poly, &poly.partial(axis), &[], &unit, &opts) {
+            if !root.certified {
+                stats.uncertified += 1;
+            }
+            special.push(root.point);
+        }
+    }
+    stats.special += special.len();
+    let mut cuts: Vec<f64> = special.iter().map(|p| p.x.clamp(0.0, 1.0)).collect();
+    cuts.push(0.0);
+    cuts.push(1.0);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < SAME_T);
+    let mut out = Vec::new();
+    for w in cuts.windows(2) {
+        let (t0, t1) = (w[0], w[1]);
+        if t1 - t0 < SAME_T {
+            continue;
+        }
+        let mid = roots_at(f, 0.5 * (t0 + t1));
+        let count = mid.len();
+        let side_nodes = |t: f64| {
+            let mut nodes = roots_at(f, t);
+            nodes.extend(special.iter().filter(|p| (p.x - t).abs() < SAME_T * 10.0).map(|p| p.y));
+            nodes
+        };
+        let (n0, n1) = (side_nodes(t0), side_nodes(t1));
+        // a branch's end: the node nearest to its root just inside the slab
+        let inner = |t: f64| {
+            let r = roots_at(f, t);
+            (r.len() == count).then_some(r)
+        };
+        let h = 1e-7 * (t1 - t0);
+        let (near0, near1) = (inner(t0 + h), inner(t1 - h));
+        for (index, &r_mid) in mid.iter().enumerate() {
+            let pick = |nodes: &[f64], near: &Option<Vec<f64>>| {
+                let r = near.as_ref().map_or(r_mid, |v| v[index]);
+                nodes
+                    .iter()
+                    .copied()
+                    .min_by(|a, b| (a - r).abs().total_cmp(&(b - r).abs()))
+                    .filter(|n| (n - r).abs() < 1e-2)
+            };
+            out.push(Branch {
+                slab: (t0, t1),
+                index,
+                count,
+                ends: (pick(&n0, &near0), pick(&n1, &near1)),
+            });
+        }
+    }
+    out
+}

@@ -163,13 +163,20 @@ fn site_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)> {
     }
 }
 
-/// Boehm knot insertion: `u` inserted once into `(knots, points)` of degree `p`.
-fn insert_knot(p: usize, knots: &mut Vec<f64>, points: &mut Vec<[f64; 3]>, u: f64) {
-    // k: the last index with knots[k] <= u < knots[k + 1]
-    let Some(k) = (0..knots.len() - 1).rev().find(|&k| knots[k] <= u && u < knots[k + 1]) else {
+/// Boehm knot insertion: `u` inserted once into `(knots, points)` of degree `p`, in
+/// the span `knots[k] ≤ u < knots[k+1]` (`knots[k] < u ≤ knots[k+1]` with `left`, for
+/// the end of the curve's range).
+fn insert_knot(p: usize, knots: &mut Vec<f64>, points: &mut Vec<[f64; 3]>, u: f64, left: bool) {
+    let Some(k) = (0..knots.len() - 1).rev().find(|&k| {
+        if left {
+            knots[k] < u && u <= knots[k + 1]
+        } else {
+            knots[k] <= u && u < knots[k + 1]
+        }
+    }) else {
         return;
     };
-    if k < p {
+    if k < p || k >= points.len() {
         return;
     }
     let mut q = Vec::with_capacity(points.len() + 1);
@@ -195,7 +202,7 @@ pub fn bspline_to_bezier(p: usize, points: &[[f64; 3]], knots: &[f64]) -> Vec<Ra
         let mult = kn.iter().filter(|&&x| x == u).count();
         // the end of the range is raised to multiplicity p as well, from its left
         for _ in mult..p {
-            insert_knot(p, &mut kn, &mut pts, u);
+            insert_knot(p, &mut kn, &mut pts, u, u == b);
         }
     }
     let mut out = Vec::new();

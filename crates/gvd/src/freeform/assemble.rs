@@ -74,7 +74,13 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usi
         }
         g.sort();
         g.dedup();
-        if g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
+        // the end of a ridge (an edge between two parts of one generator) at a centre of
+        // curvature: a vertex listing that generator twice
+        let ridge_end = members.len() == 1 && !boundary[c] && !third && g.len() == 1;
+        if ridge_end {
+            g.push(g[0]);
+        }
+        if ridge_end || g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
             let at = members.iter().map(|&i| ends[i].0).fold(Point::new(0.0, 0.0), |a, p| a + p)
                 * (1.0 / members.len() as f64);
             vertex_of[c] = Some(complex.vertices.len());

@@ -14,6 +14,7 @@
 use crate::geom::bezier::RationalBezier;
 use crate::geom::Point;
 use crate::num::bernstein::{Bernstein1, Bernstein2};
+use super::trim::Eval;
 
 /// The univariate Bernstein forms of one span used by the bisector functions.
 #[derive(Clone, Debug)]
@@ -103,6 +104,27 @@ pub fn point_curve(c: &RationalBezier, t: f64, p: Point) -> Option<Point> {
     let [q, d, _] = c.derivatives(t);
     let v = q - p;
     solve2(d, q.dot(d), v, 0.5 * (q.dot(q) - p.dot(p)))
+}
+
+/// Where the feet `a(t)` and `b(r)` coincide (within `tol`) with parallel normals: the
+/// centre of curvature `C + N̂/κ` there, the limit of the bisector of two parts of one
+/// curve at a vertex (the end of a ridge, HREK07 §8).
+pub fn ridge_end(a: &RationalBezier, t: f64, b: &RationalBezier, r: f64, tol: f64) -> Option<Eval> {
+    let [p, d1, d2] = a.derivatives(t);
+    if p.dist(b.eval(r)) > tol {
+        return None;
+    }
+    let len2 = d1.dot(d1);
+    let k = d1.cross(d2) / (len2 * len2.sqrt());
+    if !(k.abs() > 0.0) {
+        return None;
+    }
+    let n = d1.perp() * (1.0 / len2.sqrt());
+    Some(Eval {
+        p: p + n * (1.0 / k),
+        d: 1.0 / k.abs(),
+        feet: [Some(t), Some(r)],
+    })
 }
 
 /// `x` with `⟨x, u⟩ = a`, `⟨x, v⟩ = b` (Cramer's rule), `None` when `u ∥ v`.

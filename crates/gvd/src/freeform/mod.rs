@@ -97,6 +97,11 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
                     branches += 1;
                     let eval = |t: f64| -> Option<Eval> {
                         let r = trace::branch_at(&f3, &br, t)?;
+                        if ca.eval(t).dist(cb.eval(r)) <= trimmer.tol {
+                            // the feet meet (adjacent spans at a curvature extremum):
+                            // the ridge ends at the centre of curvature
+                            return bisector::ridge_end(ca, t, cb, r, trimmer.tol);
+                        }
                         let p = bisector::normals_meet(ca, t, cb, r)?;
                         Some(Eval {
                             p,
@@ -167,3 +172,4 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
     s.insert("seconds".into(), serde_json::json!(start.elapsed().as_secs_f64()));
     Ok(complex)
 }
+

@@ -8,6 +8,8 @@ use crate::complex::{FeatureKind, Generator};
 use crate::geom::bezier::RationalBezier;
 use crate::geom::ring::signed_area;
 use crate::geom::{Aabb, Point};
+use crate::num::bernstein::Bernstein1;
+use crate::num::roots::{isolate, refine};
 use crate::scene::{Mode, Scene, SiteKind};
 
 /// Angle (radians) above which the tangent direction at a joint counts as a jump.
@@ -247,6 +249,13 @@ pub fn pieces(scene: &Scene) -> Pieces {
         if spans.is_empty() {
             continue;
         }
+        // in complex and medial_axis modes a curve meets itself: cut the spans at their
+        // curvature extrema, so that no span has a bisector with itself
+        let spans = if mode == Mode::Voronoi {
+            spans
+        } else {
+            spans.iter().flat_map(split_at_vertices).collect()
+        };
         let tangents: Vec<(Point, Point)> = spans
             .iter()
             .map(|c| {
@@ -319,6 +328,52 @@ pub fn pieces(scene: &Scene) -> Pieces {
     out
 }
 
+/// The parameters in `(0, 1)` where the curvature of `c` has an extremum (the curve's
+/// vertices): with `H = (X, Y, W)`, `κ = det(H, H', H'') W³ / |T|³`, `T = (X'W − XW',
+/// Y'W − YW')` (Farin02), so `κ' = 0` where
+/// `2 (det · W³)' |T|² − 3 det · W³ (|T|²)' = 0`, a polynomial isolated in Bernstein form.
+pub fn curvature_extrema(c: &RationalBezier) -> Vec<f64> {
+    let h = c.homogeneous();
+    let coord = |k: usize| Bernstein1::exact(h.iter().map(|p| p[k]).collect());
+    let (x, y, w) = (coord(0), coord(1), coord(2));
+    let d = |f: &Bernstein1| f.derivative();
+    let (x1, y1, w1) = (d(&x), d(&y), d(&w));
+    let (x2, y2, w2) = (d(&x1), d(&y1), d(&w1));
+    let det = x
+        .mul(&y1.mul(&w2).sub(&w1.mul(&y2)))
+        .sub(&y.mul(&x1.mul(&w2).sub(&w1.mul(&x2))))
+        .add(&w.mul(&x1.mul(&y2).sub(&y1.mul(&x2))));
+    let tx = x1.mul(&w).sub(&x.mul(&w1));
+    let ty = y1.mul(&w).sub(&y.mul(&w1));
+    let t2 = tx.mul(&tx).add(&ty.mul(&ty));
+    let k = det.mul(&w.mul(&w).mul(&w));
+    let g = d(&k).mul(&t2).scale(2.0).sub(&k.mul(&d(&t2)).scale(3.0));
+    isolate(&g, 1e-12)
+        .into_iter()
+        .map(|r| if r.certified { refine(&g, r.lo, r.hi) } else { 0.5 * (r.lo + r.hi) })
+        .filter(|&t| t > 1e-6 && t < 1.0 - 1e-6)
+        .collect()
+}
+
+/// `c` cut at its curvature extrema.
+fn split_at_vertices(c: &RationalBezier) -> Vec<RationalBezier> {
+    let mut out = Vec::new();
+    let mut rest = c.clone();
+    let mut done = 0.0;
+    for t in curvature_extrema(c) {
+        let local = (t - done) / (1.0 - done);
+        if local <= 1e-6 || local >= 1.0 - 1e-6 {
+            continue;
+        }
+        let (l, r) = rest.split(local);
+        out.push(l);
+        rest = r;
+        done = t;
+    }
+    out.push(rest);
+    out
+}
+
 fn make_corner(at: Point, site: usize, index: usize, tin: Point, tout: Point, side: Side) -> Corner {
     // the cone's middle direction tin − tout; on the allowed side iff the curve turns
     // away from it (see the module docs of `freeform`)
@@ -360,5 +415,24 @@ mod tests {
         assert!(spans[1].eval(1.0).dist(want_end) < 1e-12);
         // C1 at the joint
         assert!(spans[0].derivative(1.0).dist(spans[1].derivative(0.0)) < 1e-9);
+    }
+
+    #[test]
+    fn curvature_extrema_of_an_ellipse_arc_are_its_vertices() {
+        // the quarter ellipse x = 2 cos, y = sin from (2, 0) to (0, 1) as a rational
+        // quadratic; as a half (through the vertex (0, 1)) it has one extremum there
+        let q = RationalBezier::new(
+            &[Point::new(2.0, 0.0), Point::new(2.0, 1.0), Point::new(0.0, 1.0)],
+            Some(&[1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0]),
+        );
+        assert!(curvature_extrema(&q).is_empty()); // the vertices are at its ends
+        let half = RationalBezier::new(
+            &[Point::new(2.0, 0.0), Point::new(2.0, 2.0), Point::new(-2.0, 2.0), Point::new(-2.0, 0.0)],
+            Some(&[1.0, 1.0 / 3.0, 1.0 / 3.0, 1.0]),
+        );
+        let e = curvature_extrema(&half);
+        assert_eq!(e.len(), 1, "{e:?}");
+        let p = half.eval(e[0]);
+        assert!(p.dist(Point::new(0.0, 1.0)) < 1e-9, "{p:?}");
     }
 }

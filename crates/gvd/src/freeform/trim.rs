@@ -128,7 +128,7 @@ impl Trimmer<'_> {
                     if self.constraints.orientation && !span.side.admits(side) {
                         return Status::Bad;
                     }
-                    if self.constraints.curvature && curv >= 1.0 {
+                    if self.constraints.curvature && curv > 1.0 + 1e-9 {
                         return Status::Bad;
                     }
                 }
@@ -185,7 +185,14 @@ impl Trimmer<'_> {
                     true
                 } else {
                     let m = self.sample(pair, eval, 0.5 * (a.s + b.s));
-                    let far = m.e.map_or(true, |e| segment_distance(e.p, pa, pb) > self.chord);
+                    // far from the chord, or (a parameterization far from uniform in the
+                    // plane, near a singular corner) splitting the chord unevenly
+                    let len = pa.dist(pb);
+                    let far = m.e.map_or(true, |e| {
+                        let share = e.p.dist(pa) / len;
+                        segment_distance(e.p, pa, pb) > self.chord
+                            || (len > self.chord && !(0.2..=0.8).contains(&share))
+                    });
                     if far || m.status != Status::Valid {
                         self.refine(pair, eval, a, m, depth + 1, out);
                         out.push(m);

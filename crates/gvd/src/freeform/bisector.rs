@@ -90,6 +90,21 @@ pub fn f3(a: &SpanForms, b: &SpanForms) -> Bernstein2 {
     ww.mul(&nx.mul(&ex).add(&ny.mul(&ey))).sub(&det.mul(&q))
 }
 
+/// The corners `(t, r)` of the parameter square where spans `a` and `b` share an end
+/// point (within rounding of the knot insertion).
+pub fn shared_ends(a: &RationalBezier, b: &RationalBezier) -> Vec<Point> {
+    let mut out = Vec::new();
+    let tol = 1e-12 * (1.0 + a.control_box().longest_side() + a.eval(0.0).norm());
+    for t in [0.0, 1.0] {
+        for r in [0.0, 1.0] {
+            if a.eval(t).dist(b.eval(r)) <= tol {
+                out.push(Point::new(t, r));
+            }
+        }
+    }
+    out
+}
+
 /// The intersection of the normal lines of `a` at `t` and of `b` at `r` (eq. 5), or
 /// `None` where they are parallel.
 pub fn normals_meet(a: &RationalBezier, t: f64, b: &RationalBezier, r: f64) -> Option<Point> {

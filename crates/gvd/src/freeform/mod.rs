@@ -87,13 +87,17 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
     let mut runs: Vec<Run> = Vec::new();
     let mut stats = trace::TraceStats::default();
     let mut branches = 0usize;
+    let mut trace_seconds = 0.0;
     let forms = &features.forms;
     for &[f, g] in &pairs {
         match (f, g) {
             (Feature::Span(a), Feature::Span(b)) => {
                 let (ca, cb) = (&pieces.spans[a].curve, &pieces.spans[b].curve);
                 let f3 = bisector::f3(&forms[a], &forms[b]);
-                for br in trace::branches(&f3, &mut stats) {
+                let clock = std::time::Instant::now();
+                let found = trace::branches(&f3, &bisector::shared_ends(ca, cb), &mut stats);
+                trace_seconds += clock.elapsed().as_secs_f64();
+                for br in found {
                     branches += 1;
                     let eval = |t: f64| -> Option<Eval> {
                         let r = trace::branch_at(&f3, &br, t)?;
@@ -169,7 +173,31 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
     s.insert("uncertified_special_points".into(), serde_json::json!(stats.uncertified));
     s.insert("samples".into(), serde_json::json!(trimmer.samples.get()));
     s.insert("loose_ends".into(), serde_json::json!(loose));
+    s.insert("seconds_trace".into(), serde_json::json!(trace_seconds));
     s.insert("seconds".into(), serde_json::json!(start.elapsed().as_secs_f64()));
     Ok(complex)
 }
 
+#[cfg(test)]
+mod debug_tests {
+    #[test]
+    fn debug_slow_pairs() {
+        let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/freeform-piecewise-c1-complex.json")).unwrap();
+        let scene = crate::Scene::from_json(&text).unwrap();
+        let pieces = super::pieces::pieces(&scene);
+        let features = super::Features::new(&pieces);
+        for [f, g] in super::candidates::pairs(&features, &scene.domain()) {
+            if let (super::Feature::Span(a), super::Feature::Span(b)) = (f, g) {
+                let f3 = super::bisector::f3(&features.forms[a], &features.forms[b]);
+                let clock = std::time::Instant::now();
+                let mut st = super::trace::TraceStats::default();
+                let n = super::trace::branches(&f3, &super::bisector::shared_ends(&pieces.spans[a].curve, &pieces.spans[b].curve), &mut st).len();
+                let dt = clock.elapsed().as_secs_f64();
+                if dt > 0.05 {
+                    let (ca, cb) = (&pieces.spans[a].curve, &pieces.spans[b].curve);
+                    eprintln!("pair {a} {b} sites {} {} : {dt:.3}s n={n} special {} unc {} ends {:?} {:?} / {:?} {:?}", pieces.spans[a].site, pieces.spans[b].site, st.special, st.uncertified, ca.eval(0.0), ca.eval(1.0), cb.eval(0.0), cb.eval(1.0));
+                }
+            }
+        }
+    }
+}

@@ -75,8 +75,35 @@ pub struct TraceStats {
     pub uncertified: usize,
 }
 
-/// The monotone branches of `F3 = 0` over `[0, 1]²`.
-pub fn branches(f: &Bernstein2, stats: &mut TraceStats) -> Vec<Branch> {
+/// Side of the box left out around a shared end of two spans.
+const CORNER_BOX: f64 = 1e-3;
+
+/// `b` minus the box `e`, as up to four boxes.
+fn subtract(b: &Aabb, e: &Aabb) -> Vec<Aabb> {
+    let (x0, x1) = (e.min.x.max(b.min.x), e.max.x.min(b.max.x));
+    let (y0, y1) = (e.min.y.max(b.min.y), e.max.y.min(b.max.y));
+    if x0 >= x1 || y0 >= y1 {
+        return vec![*b];
+    }
+    let mut out = Vec::new();
+    let mut push = |a: [f64; 4]| {
+        if a[0] < a[2] && a[1] < a[3] {
+            out.push(Aabb::from_array(a));
+        }
+    };
+    push([b.min.x, b.min.y, x0, b.max.y]);
+    push([x1, b.min.y, b.max.x, b.max.y]);
+    push([x0, b.min.y, x1, y0]);
+    push([x0, y1, x1, b.max.y]);
+    out
+}
+
+/// The monotone branches of `F3 = 0` over `[0, 1]²`. `shared` lists the corners of
+/// the square where the two spans share an end point: `F3` vanishes to second order
+/// there (both `C₀ − C₁` and the tangents' cross product vanish), a singular point the
+/// 2-D solver cannot certify, so the turning points are sought outside a box of side
+/// [`CORNER_BOX`] around it and the corner itself cuts the slabs.
+pub fn branches(f: &Bernstein2, shared: &[Point], stats: &mut TraceStats) -> Vec<Branch> {
     if f.range().excludes_zero() {
         return Vec::new();
     }
@@ -95,17 +122,34 @@ pub fn branches(f: &Bernstein2, stats: &mut TraceStats) -> Vec<Branch> {
     }
     // turning points
     let poly = f.to_poly();
-    let unit = Aabb::from_array([0.0, 0.0, 1.0, 1.0]);
-    let opts = SystemOptions {
-        min_size: 1e-8,
-        max_boxes: 1 << 12,
+    let mut domains = vec![Aabb::from_array([0.0, 0.0, 1.0, 1.0])];
+    for c in shared {
+        let h = Point::new(CORNER_BOX, CORNER_BOX);
+        let e = Aabb::new(*c - h, *c + h);
+        domains = domains.iter().flat_map(|b| subtract(b, &e)).collect();
+        special.push(*c);
+    }
+    // the clusters around a shared corner's box are not worth fine boxes
+    let opts = if shared.is_empty() {
+        SystemOptions {
+            min_size: 1e-7,
+            max_boxes: 1 << 12,
+        }
+    } else {
+        SystemOptions {
+            min_size: 1e-5,
+            max_boxes: 1 << 10,
+        }
     };
     for axis in [0, 1] {
-        for root in solve_system(&poly, &poly.partial(axis), &[], &unit, &opts) {
-            if !root.certified {
-                stats.uncertified += 1;
+        let g = poly.partial(axis);
+        for d in &domains {
+            for root in solve_system(&poly, &g, &[], d, &opts) {
+                if !root.certified {
+                    stats.uncertified += 1;
+                }
+                special.push(root.point);
             }
-            special.push(root.point);
         }
     }
     stats.special += special.len();

@@ -81,7 +81,10 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usi
             g.push(g[0]);
         }
         if ridge_end || g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
-            let at = members.iter().map(|&i| ends[i].0).fold(Point::new(0.0, 0.0), |a, p| a + p)
+            let at = members
+                .iter()
+                .map(|&i| ends[i].0)
+                .fold(Point::new(0.0, 0.0), |a, p| a + p)
                 * (1.0 / members.len() as f64);
             vertex_of[c] = Some(complex.vertices.len());
             complex.vertices.push(Vertex {
@@ -134,7 +137,10 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usi
             if rev {
                 p.reverse();
             }
-            if points.last().is_some_and(|q| p.first().is_some_and(|f| q.dist(*f) <= tol)) {
+            if points
+                .last()
+                .is_some_and(|q| p.first().is_some_and(|f| q.dist(*f) <= tol))
+            {
                 p.remove(0);
             }
             points.extend(p);

@@ -11,10 +11,10 @@
 //! `F3 = 2 W₀W₁ ⟨N, E⟩ − det · Q`, `E = (X₀W₁ − X₁W₀, Y₀W₁ − Y₁W₀)`,
 //! `Q = (X₀² + Y₀²) W₁² − (X₁² + Y₁²) W₀²`. Polynomial spans take `W = 1`, `T = H'`.
 
+use super::trim::Eval;
 use crate::geom::bezier::RationalBezier;
 use crate::geom::Point;
 use crate::num::bernstein::{Bernstein1, Bernstein2};
-use super::trim::Eval;
 
 /// The univariate Bernstein forms of one span used by the bisector functions.
 #[derive(Clone, Debug)]
@@ -37,7 +37,8 @@ impl SpanForms {
     /// The forms of `c`.
     pub fn new(c: &RationalBezier) -> SpanForms {
         let h = c.homogeneous();
-        let coord = |k: usize, scale: f64| Bernstein1::exact(h.iter().map(|p| p[k] * scale).collect());
+        let coord =
+            |k: usize, scale: f64| Bernstein1::exact(h.iter().map(|p| p[k] * scale).collect());
         if c.is_polynomial() {
             let inv = 1.0 / h[0][2];
             let (x, y) = (coord(0, inv), coord(1, inv));
@@ -131,7 +132,7 @@ pub fn ridge_end(a: &RationalBezier, t: f64, b: &RationalBezier, r: f64, tol: f6
     }
     let len2 = d1.dot(d1);
     let k = d1.cross(d2) / (len2 * len2.sqrt());
-    if !(k.abs() > 0.0) {
+    if k.is_nan() || k == 0.0 {
         return None;
     }
     let n = d1.perp() * (1.0 / len2.sqrt());
@@ -146,10 +147,13 @@ pub fn ridge_end(a: &RationalBezier, t: f64, b: &RationalBezier, r: f64, tol: f6
 fn solve2(u: Point, a: f64, v: Point, b: f64) -> Option<Point> {
     let det = u.x * v.y - u.y * v.x;
     let scale = u.norm() * v.norm();
-    if !(det.abs() > 1e-14 * scale) {
+    if det.is_nan() || det.abs() <= 1e-14 * scale {
         return None;
     }
-    Some(Point::new((a * v.y - b * u.y) / det, (u.x * b - v.x * a) / det))
+    Some(Point::new(
+        (a * v.y - b * u.y) / det,
+        (u.x * b - v.x * a) / det,
+    ))
 }
 
 /// The signed offset `⟨q − C(t), N_L(t)⟩ / |C'|` of `q` from span `c` at `t` (eq. 8),
@@ -183,7 +187,12 @@ mod tests {
     fn f3_vanishes_exactly_on_bisector_points() {
         // two cubic spans; F3's zero set gives equidistant normal intersections
         let a = RationalBezier::new(
-            &[Point::new(0.0, 0.0), Point::new(1.0, 0.5), Point::new(2.0, -0.5), Point::new(3.0, 0.2)],
+            &[
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 0.5),
+                Point::new(2.0, -0.5),
+                Point::new(3.0, 0.2),
+            ],
             None,
         );
         let b = arc(Point::new(1.5, 3.0), 1.0, -2.5, -0.6);
@@ -216,7 +225,10 @@ mod tests {
             // the centre is to the left of a counter-clockwise arc at distance 2:
             // the curvature test value there is exactly 1
             let (side, k) = side_and_curvature(&c, t, Point::new(0.0, 0.0));
-            assert!((side - 2.0).abs() < 1e-12 && (k - 1.0).abs() < 1e-12, "{side} {k}");
+            assert!(
+                (side - 2.0).abs() < 1e-12 && (k - 1.0).abs() < 1e-12,
+                "{side} {k}"
+            );
         }
     }
 }

@@ -26,7 +26,12 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
         let pts = s.curve.sample(SAMPLES);
         // the curve between samples stays within half an arc step of them; the arc is
         // bounded by the control polygon's length per step
-        let poly: f64 = s.curve.control_points().windows(2).map(|w| w[0].dist(w[1])).sum();
+        let poly: f64 = s
+            .curve
+            .control_points()
+            .windows(2)
+            .map(|w| w[0].dist(w[1]))
+            .sum();
         let step = pts.windows(2).map(|w| w[0].dist(w[1])).fold(0.0, f64::max);
         let slack = 0.5 * step.max(poly / SAMPLES as f64 * 2.0);
         sampled.push((Feature::Span(k), pts, slack, s.bbox));
@@ -37,12 +42,16 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
     }
     let (dx, dy) = (domain.width() / GRID as f64, domain.height() / GRID as f64);
     let rho = 0.5 * dx.hypot(dy);
-    let dist = |q: Point, pts: &[Point]| pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min);
+    let dist =
+        |q: Point, pts: &[Point]| pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min);
     let mut out: BTreeSet<[Feature; 2]> = BTreeSet::new();
     let mut near: Vec<usize> = Vec::new();
     for i in 0..GRID {
         for j in 0..GRID {
-            let q = Point::new(domain.min.x + (i as f64 + 0.5) * dx, domain.min.y + (j as f64 + 0.5) * dy);
+            let q = Point::new(
+                domain.min.x + (i as f64 + 0.5) * dx,
+                domain.min.y + (j as f64 + 0.5) * dy,
+            );
             let mut upper = f64::INFINITY;
             for (_, pts, _, b) in &sampled {
                 if b.outside_distance(q) < upper {

@@ -32,8 +32,6 @@ use nearest::Features;
 use pieces::Feature;
 use trim::{Constraints, Eval, Run, Trimmer};
 
-pub use trim::Constraints as TrimConstraints;
-
 /// True when every site is a free-form curve (`bezier`, `bspline`).
 pub fn supports(scene: &Scene) -> bool {
     !scene.sites().is_empty()
@@ -128,13 +126,21 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
                         feet: [None, Some(t)],
                     })
                 };
-                runs.extend(trimmer.trim([Feature::Corner(c), Feature::Span(b)], &eval, 0.0, 1.0, 32));
+                runs.extend(trimmer.trim(
+                    [Feature::Corner(c), Feature::Span(b)],
+                    &eval,
+                    0.0,
+                    1.0,
+                    32,
+                ));
             }
             (Feature::Corner(c0), Feature::Corner(c1)) => {
                 let (p0, p1) = (pieces.corners[c0].at, pieces.corners[c1].at);
                 let m = (p0 + p1) * 0.5;
                 let dir = (p1 - p0).perp();
-                let Some((s0, s1)) = domain.line_range(m, dir) else { continue };
+                let Some((s0, s1)) = domain.line_range(m, dir) else {
+                    continue;
+                };
                 branches += 1;
                 let eval = |s: f64| -> Option<Eval> {
                     let q = m + dir * s;
@@ -170,34 +176,74 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
     s.insert("pairs".into(), serde_json::json!(pairs.len()));
     s.insert("branches".into(), serde_json::json!(branches));
     s.insert("special_points".into(), serde_json::json!(stats.special));
-    s.insert("uncertified_special_points".into(), serde_json::json!(stats.uncertified));
+    s.insert(
+        "uncertified_special_points".into(),
+        serde_json::json!(stats.uncertified),
+    );
     s.insert("samples".into(), serde_json::json!(trimmer.samples.get()));
     s.insert("loose_ends".into(), serde_json::json!(loose));
     s.insert("seconds_trace".into(), serde_json::json!(trace_seconds));
-    s.insert("seconds".into(), serde_json::json!(start.elapsed().as_secs_f64()));
+    s.insert(
+        "seconds".into(),
+        serde_json::json!(start.elapsed().as_secs_f64()),
+    );
     Ok(complex)
 }
 
 #[cfg(test)]
-mod debug_tests {
-    #[test]
-    fn debug_slow_pairs() {
-        let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/freeform-piecewise-c1-complex.json")).unwrap();
-        let scene = crate::Scene::from_json(&text).unwrap();
-        let pieces = super::pieces::pieces(&scene);
-        let features = super::Features::new(&pieces);
-        for [f, g] in super::candidates::pairs(&features, &scene.domain()) {
-            if let (super::Feature::Span(a), super::Feature::Span(b)) = (f, g) {
-                let f3 = super::bisector::f3(&features.forms[a], &features.forms[b]);
-                let clock = std::time::Instant::now();
-                let mut st = super::trace::TraceStats::default();
-                let n = super::trace::branches(&f3, &super::bisector::shared_ends(&pieces.spans[a].curve, &pieces.spans[b].curve), &mut st).len();
-                let dt = clock.elapsed().as_secs_f64();
-                if dt > 0.05 {
-                    let (ca, cb) = (&pieces.spans[a].curve, &pieces.spans[b].curve);
-                    eprintln!("pair {a} {b} sites {} {} : {dt:.3}s n={n} special {} unc {} ends {:?} {:?} / {:?} {:?}", pieces.spans[a].site, pieces.spans[b].site, st.special, st.uncertified, ca.eval(0.0), ca.eval(1.0), cb.eval(0.0), cb.eval(1.0));
+mod tests {
+    use super::*;
+    use crate::geom::ring::even_odd_contains;
+
+    fn scene(name: &str) -> Scene {
+        let path = format!("{}/tests/data/freeform/{name}", env!("CARGO_MANIFEST_DIR"));
+        Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap()
+    }
+
+    /// Edge points inside a closed site, and edge points not on the diagram: unequal
+    /// distances to the edge's two sites, or a third site nearer, by more than epsilon
+    /// (`voronoi` mode).
+    fn faults(sc: &Scene, d: &VoronoiComplex) -> (usize, usize) {
+        let pieces = pieces::pieces(sc);
+        let features = Features::new(&pieces);
+        let rings: Vec<Vec<Point>> = (0..sc.sites().len())
+            .map(|i| {
+                pieces
+                    .spans
+                    .iter()
+                    .filter(|s| s.site == i)
+                    .flat_map(|s| s.curve.sample(64))
+                    .collect()
+            })
+            .collect();
+        let (mut inside, mut nearer) = (0, 0);
+        for e in &d.edges {
+            for &q in &e.points {
+                if rings.iter().any(|r| even_odd_contains(r, q)) {
+                    inside += 1;
+                }
+                let site_distance = |i: usize| {
+                    (0..pieces.spans.len())
+                        .filter(|&k| pieces.spans[k].site == i)
+                        .map(|k| features.span_distance(k, q).0)
+                        .fold(f64::INFINITY, f64::min)
+                };
+                let (di, dj) = (
+                    site_distance(e.sites[0].site()),
+                    site_distance(e.sites[1].site()),
+                );
+                let best = features.nearest(q).map_or(f64::INFINITY, |(_, d)| d);
+                if (di - dj).abs() > sc.epsilon() || best < di.min(dj) - sc.epsilon() {
+                    nearer += 1;
                 }
             }
         }
+        (inside, nearer)
+    }
+
+    #[test]
+    fn the_lower_envelope_leaves_only_nearest_points() {
+        let sc = scene("freeform-nonconvex2-voronoi.json");
+        assert_eq!(faults(&sc, &compute(&sc).unwrap()), (0, 0));
     }
 }

@@ -22,8 +22,14 @@ impl<'a> Features<'a> {
     /// Prepares the queries over `pieces`.
     pub fn new(pieces: &'a Pieces) -> Self {
         Features {
-            forms: pieces.spans.iter().map(|s| SpanForms::new(&s.curve)).collect(),
-            active: (0..pieces.corners.len()).filter(|&k| pieces.corners[k].active).collect(),
+            forms: pieces
+                .spans
+                .iter()
+                .map(|s| SpanForms::new(&s.curve))
+                .collect(),
+            active: (0..pieces.corners.len())
+                .filter(|&k| pieces.corners[k].active)
+                .collect(),
             pieces,
         }
     }

@@ -107,7 +107,11 @@ impl Pieces {
     pub fn generator(&self, f: Feature) -> Generator {
         let (site, feature, index) = match f {
             Feature::Span(k) => (self.spans[k].site, FeatureKind::Piece, self.spans[k].piece),
-            Feature::Corner(k) => (self.corners[k].site, FeatureKind::Corner, self.corners[k].index),
+            Feature::Corner(k) => (
+                self.corners[k].site,
+                FeatureKind::Corner,
+                self.corners[k].index,
+            ),
         };
         if self.featured {
             Generator::Feature {
@@ -157,7 +161,10 @@ fn site_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)> {
                 })
                 .collect();
             let spans = bspline_to_bezier(*degree, &h, knots);
-            let ends = spans.first().zip(spans.last()).map(|(a, b)| (a.eval(0.0), b.eval(1.0)));
+            let ends = spans
+                .first()
+                .zip(spans.last())
+                .map(|(a, b)| (a.eval(0.0), b.eval(1.0)));
             let meets = ends.is_some_and(|(a, b)| a.dist(b) <= 1e-9 * (1.0 + a.norm()));
             Some((spans, *closed || meets))
         }
@@ -185,7 +192,9 @@ fn insert_knot(p: usize, knots: &mut Vec<f64>, points: &mut Vec<[f64; 3]>, u: f6
     q.extend_from_slice(&points[..=k - p]);
     for i in k - p + 1..=k {
         let a = (u - knots[i]) / (knots[i + p] - knots[i]);
-        q.push(std::array::from_fn(|c| (1.0 - a) * points[i - 1][c] + a * points[i][c]));
+        q.push(std::array::from_fn(|c| {
+            (1.0 - a) * points[i - 1][c] + a * points[i][c]
+        }));
     }
     q.extend_from_slice(&points[k..]);
     *points = q;
@@ -196,7 +205,11 @@ fn insert_knot(p: usize, knots: &mut Vec<f64>, points: &mut Vec<[f64; 3]>, u: f6
 pub fn bspline_to_bezier(p: usize, points: &[[f64; 3]], knots: &[f64]) -> Vec<RationalBezier> {
     let n = points.len();
     let (a, b) = (knots[p], knots[n]);
-    let mut values: Vec<f64> = knots.iter().copied().filter(|&u| a <= u && u <= b).collect();
+    let mut values: Vec<f64> = knots
+        .iter()
+        .copied()
+        .filter(|&u| a <= u && u <= b)
+        .collect();
     values.dedup();
     let mut kn = knots.to_vec();
     let mut pts = points.to_vec();
@@ -263,7 +276,9 @@ pub fn pieces(scene: &Scene) -> Pieces {
                 (unit(a), unit(b))
             })
             .collect();
-        let jump = |a: Point, b: Point| a.dot(b) < (CORNER_ANGLE).cos() || a.norm() == 0.0 || b.norm() == 0.0;
+        let jump = |a: Point, b: Point| {
+            a.dot(b) < (CORNER_ANGLE).cos() || a.norm() == 0.0 || b.norm() == 0.0
+        };
         let m = spans.len();
         // breaks[k]: a corner at the start of span k
         let mut breaks: Vec<bool> = (0..m)
@@ -307,9 +322,20 @@ pub fn pieces(scene: &Scene) -> Pieces {
                 piece += 1;
             }
             if breaks[k] {
-                let tin = if !closed && k == 0 { Point::new(0.0, 0.0) } else { tangents[(k + m - 1) % m].1 };
+                let tin = if !closed && k == 0 {
+                    Point::new(0.0, 0.0)
+                } else {
+                    tangents[(k + m - 1) % m].1
+                };
                 let tout = tangents[k].0;
-                out.corners.push(make_corner(spans[k].eval(0.0), site, corner, tin, tout, side));
+                out.corners.push(make_corner(
+                    spans[k].eval(0.0),
+                    site,
+                    corner,
+                    tin,
+                    tout,
+                    side,
+                ));
                 corner += 1;
             }
             out.spans.push(Span {
@@ -322,7 +348,14 @@ pub fn pieces(scene: &Scene) -> Pieces {
         }
         if !closed {
             let end = spans[m - 1].eval(1.0);
-            out.corners.push(make_corner(end, site, corner, tangents[m - 1].1, Point::new(0.0, 0.0), side));
+            out.corners.push(make_corner(
+                end,
+                site,
+                corner,
+                tangents[m - 1].1,
+                Point::new(0.0, 0.0),
+                side,
+            ));
         }
     }
     out
@@ -350,7 +383,13 @@ pub fn curvature_extrema(c: &RationalBezier) -> Vec<f64> {
     let g = d(&k).mul(&t2).scale(2.0).sub(&k.mul(&d(&t2)).scale(3.0));
     isolate(&g, 1e-12)
         .into_iter()
-        .map(|r| if r.certified { refine(&g, r.lo, r.hi) } else { 0.5 * (r.lo + r.hi) })
+        .map(|r| {
+            if r.certified {
+                refine(&g, r.lo, r.hi)
+            } else {
+                0.5 * (r.lo + r.hi)
+            }
+        })
         .filter(|&t| t > 1e-6 && t < 1.0 - 1e-6)
         .collect()
 }
@@ -374,7 +413,14 @@ fn split_at_vertices(c: &RationalBezier) -> Vec<RationalBezier> {
     out
 }
 
-fn make_corner(at: Point, site: usize, index: usize, tin: Point, tout: Point, side: Side) -> Corner {
+fn make_corner(
+    at: Point,
+    site: usize,
+    index: usize,
+    tin: Point,
+    tout: Point,
+    side: Side,
+) -> Corner {
     // the cone's middle direction tin − tout; on the allowed side iff the curve turns
     // away from it (see the module docs of `freeform`)
     let turn = tin.cross(tout);
@@ -422,12 +468,21 @@ mod tests {
         // the quarter ellipse x = 2 cos, y = sin from (2, 0) to (0, 1) as a rational
         // quadratic; as a half (through the vertex (0, 1)) it has one extremum there
         let q = RationalBezier::new(
-            &[Point::new(2.0, 0.0), Point::new(2.0, 1.0), Point::new(0.0, 1.0)],
+            &[
+                Point::new(2.0, 0.0),
+                Point::new(2.0, 1.0),
+                Point::new(0.0, 1.0),
+            ],
             Some(&[1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0]),
         );
         assert!(curvature_extrema(&q).is_empty()); // the vertices are at its ends
         let half = RationalBezier::new(
-            &[Point::new(2.0, 0.0), Point::new(2.0, 2.0), Point::new(-2.0, 2.0), Point::new(-2.0, 0.0)],
+            &[
+                Point::new(2.0, 0.0),
+                Point::new(2.0, 2.0),
+                Point::new(-2.0, 2.0),
+                Point::new(-2.0, 0.0),
+            ],
             Some(&[1.0, 1.0 / 3.0, 1.0 / 3.0, 1.0]),
         );
         let e = curvature_extrema(&half);

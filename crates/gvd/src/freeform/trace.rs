@@ -168,7 +168,12 @@ pub fn branches(f: &Bernstein2, shared: &[Point], stats: &mut TraceStats) -> Vec
         let count = mid.len();
         let side_nodes = |t: f64| {
             let mut nodes = roots_at(f, t);
-            nodes.extend(special.iter().filter(|p| (p.x - t).abs() < SAME_T * 10.0).map(|p| p.y));
+            nodes.extend(
+                special
+                    .iter()
+                    .filter(|p| (p.x - t).abs() < SAME_T * 10.0)
+                    .map(|p| p.y),
+            );
             nodes
         };
         let (n0, n1) = (side_nodes(t0), side_nodes(t1));

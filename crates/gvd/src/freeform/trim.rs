@@ -62,8 +62,6 @@ pub struct Run {
     pub pair: [Feature; 2],
     /// The polyline.
     pub points: Vec<Point>,
-    /// Clearance at each polyline point.
-    pub clearance: Vec<f64>,
     /// How the first and the last point end.
     pub ends: [End; 2],
 }
@@ -113,16 +111,16 @@ impl Trimmer<'_> {
     fn status(&self, pair: [Feature; 2], e: Option<Eval>) -> Status {
         let Some(e) = e else { return Status::Bad };
         let slack = 1e-9 * self.domain.longest_side();
-        if !(e.p.x.is_finite() && e.p.y.is_finite())
-            || self.domain.outside_distance(e.p) > slack
-        {
+        if !(e.p.x.is_finite() && e.p.y.is_finite()) || self.domain.outside_distance(e.p) > slack {
             return Status::Out;
         }
         let pieces = self.features.pieces;
         for (k, f) in pair.iter().enumerate() {
             match *f {
                 Feature::Span(i) => {
-                    let Some(t) = e.feet[k] else { return Status::Bad };
+                    let Some(t) = e.feet[k] else {
+                        return Status::Bad;
+                    };
                     let span = &pieces.spans[i];
                     let (side, curv) = side_and_curvature(&span.curve, t, e.p);
                     if self.constraints.orientation && !span.side.admits(side) {
@@ -188,7 +186,7 @@ impl Trimmer<'_> {
                     // far from the chord, or (a parameterization far from uniform in the
                     // plane, near a singular corner) splitting the chord unevenly
                     let len = pa.dist(pb);
-                    let far = m.e.map_or(true, |e| {
+                    let far = m.e.is_none_or(|e| {
                         let share = e.p.dist(pa) / len;
                         segment_distance(e.p, pa, pb) > self.chord
                             || (len > self.chord && !(0.2..=0.8).contains(&share))
@@ -241,7 +239,11 @@ impl Trimmer<'_> {
         let n = initial.max(2);
         let coarse: Vec<Sample> = (0..=n)
             .map(|k| {
-                let s = if k == n { s1 } else { s0 + (s1 - s0) * k as f64 / n as f64 };
+                let s = if k == n {
+                    s1
+                } else {
+                    s0 + (s1 - s0) * k as f64 / n as f64
+                };
                 self.sample(pair, eval, s)
             })
             .collect();
@@ -279,12 +281,7 @@ impl Trimmer<'_> {
                     points[j] = self.domain.clamp(points[j]);
                 }
             }
-            runs.push(Run {
-                pair,
-                clearance: evals.iter().map(|e| e.d).collect(),
-                points,
-                ends,
-            });
+            runs.push(Run { pair, points, ends });
         }
         runs
     }

@@ -53,7 +53,12 @@ impl RationalBezier {
     /// property, weights positive).
     pub fn control_box(&self) -> crate::geom::Aabb {
         let pts = self.control_points();
-        let mut b = crate::geom::Aabb::from_array([f64::INFINITY, f64::INFINITY, -f64::INFINITY, -f64::INFINITY]);
+        let mut b = crate::geom::Aabb::from_array([
+            f64::INFINITY,
+            f64::INFINITY,
+            -f64::INFINITY,
+            -f64::INFINITY,
+        ]);
         for p in pts {
             b.min.x = b.min.x.min(p.x);
             b.min.y = b.min.y.min(p.y);
@@ -70,8 +75,15 @@ impl RationalBezier {
     pub fn end_tangents(&self) -> (Point, Point) {
         let pts = self.control_points();
         let (first, last) = (pts[0], pts[pts.len() - 1]);
-        let start = pts.iter().find(|&&p| p != first).map_or(Point::new(0.0, 0.0), |&p| p - first);
-        let end = pts.iter().rev().find(|&&p| p != last).map_or(Point::new(0.0, 0.0), |&p| last - p);
+        let start = pts
+            .iter()
+            .find(|&&p| p != first)
+            .map_or(Point::new(0.0, 0.0), |&p| p - first);
+        let end = pts
+            .iter()
+            .rev()
+            .find(|&&p| p != last)
+            .map_or(Point::new(0.0, 0.0), |&p| last - p);
         (start, end)
     }
 
@@ -85,9 +97,19 @@ impl RationalBezier {
                 .map(|p| std::array::from_fn(|c| k as f64 * (p[1][c] - p[0][c])))
                 .collect()
         };
-        let d1 = if n >= 1 { diff(&self.homogeneous, n) } else { Vec::new() };
+        let d1 = if n >= 1 {
+            diff(&self.homogeneous, n)
+        } else {
+            Vec::new()
+        };
         let d2 = if n >= 2 { diff(&d1, n - 1) } else { Vec::new() };
-        let at = |v: &[[f64; 3]]| if v.is_empty() { [0.0; 3] } else { de_casteljau(v, t, |_, _| {}) };
+        let at = |v: &[[f64; 3]]| {
+            if v.is_empty() {
+                [0.0; 3]
+            } else {
+                de_casteljau(v, t, |_, _| {})
+            }
+        };
         let (h1, h2) = (at(&d1), at(&d2));
         let w = h0[2];
         let c = Point::new(h0[0] / w, h0[1] / w);

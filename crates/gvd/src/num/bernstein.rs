@@ -842,15 +842,15 @@ impl Bernstein2 {
         };
         let (px, py) = (power(dx), power(dy));
         let mut acc = vec![0.0; (dx + 1) * (dy + 1)];
-        for i in 0..=dx {
-            for j in 0..=dy {
+        for (i, row) in px.iter().enumerate() {
+            for (j, col) in py.iter().enumerate() {
                 let b = self.coef[i * (dy + 1) + j];
                 if b == 0.0 {
                     continue;
                 }
                 for k in i..=dx {
                     for l in j..=dy {
-                        acc[k * (dy + 1) + l] += b * px[i][k] * py[j][l];
+                        acc[k * (dy + 1) + l] += b * row[k] * col[l];
                     }
                 }
             }
@@ -1030,7 +1030,10 @@ mod tests {
             assert!((f.restrict(Axis::X, u).eval(v) - want).abs() < 1e-12);
             assert!((f.restrict(Axis::Y, v).eval(u) - want).abs() < 1e-12);
         }
-        assert_eq!(Bernstein1::constant(2.0).mul(&a).eval(0.4), 2.0 * a.eval(0.4));
+        assert_eq!(
+            Bernstein1::constant(2.0).mul(&a).eval(0.4),
+            2.0 * a.eval(0.4)
+        );
     }
 
     proptest! {

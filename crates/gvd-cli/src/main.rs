@@ -84,7 +84,8 @@ struct ComputeArgs {
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]
     threads: Option<u64>,
     /// Algorithm family: `auto` takes the incremental engine for scenes of Euclidean
-    /// points and the subdivision engine otherwise.
+    /// points, the freeform engine for scenes of bezier/bspline curves, and the
+    /// subdivision engine otherwise.
     #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
     engine: EngineArg,
     /// Give every edge of the incremental engine its exact bisector: `bisector`,
@@ -175,6 +176,7 @@ enum EngineArg {
     Auto,
     Subdivision,
     Incremental,
+    Freeform,
 }
 
 impl From<EngineArg> for gvd::Engine {
@@ -183,6 +185,7 @@ impl From<EngineArg> for gvd::Engine {
             EngineArg::Auto => gvd::Engine::Auto,
             EngineArg::Subdivision => gvd::Engine::Subdivision,
             EngineArg::Incremental => gvd::Engine::Incremental,
+            EngineArg::Freeform => gvd::Engine::Freeform,
         }
     }
 }

@@ -25,6 +25,8 @@ pub enum Engine {
     /// Topology-oriented incremental construction: Euclidean points, segments,
     /// polylines and polygons.
     Incremental,
+    /// Bisectors in parameter space (HREK07): scenes of `bezier` and `bspline` curves.
+    Freeform,
 }
 
 /// How to compute a diagram: the engine, and each engine's own knobs.
@@ -93,6 +95,15 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 /// [`compute`], also returning the subdivision's leaves (none for the incremental engine).
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     check_medial_axis(scene)?;
+    if options.engine == Engine::Freeform
+        || (options.engine == Engine::Auto && crate::freeform::supports(scene))
+    {
+        let complex = crate::freeform::compute(scene)?;
+        return Ok(Computation {
+            complex,
+            boxes: Vec::new(),
+        });
+    }
     let points = euclidean_points(scene);
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {
@@ -208,7 +219,16 @@ fn check_one_engine_takes_all(scene: &Scene) -> Result<(), Error> {
     };
     let by_none = |k: &SiteKind| !subdivision_supports(k) && !incremental::supports_site(k);
     if let Some(i) = sites.iter().position(|s| by_none(&s.kind)) {
-        return Err(unsupported(i, "no engine computes this kind yet".into()));
+        let message = if matches!(
+            sites[i].kind,
+            SiteKind::Bezier { .. } | SiteKind::Bspline { .. }
+        ) {
+            "the free-form engine computes scenes of Bézier and B-spline curves alone; no \
+             engine computes them with other kinds yet"
+        } else {
+            "no engine computes this kind yet"
+        };
+        return Err(unsupported(i, message.into()));
     }
     let other = sites
         .iter()

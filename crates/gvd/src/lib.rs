@@ -36,6 +36,7 @@ mod clearance;
 pub mod complex;
 mod compute;
 mod error;
+mod freeform;
 pub mod geom;
 mod incremental;
 pub mod io;

@@ -28,6 +28,99 @@ impl RationalBezier {
         RationalBezier { homogeneous }
     }
 
+    /// The curve of homogeneous control points `(wᵢ xᵢ, wᵢ yᵢ, wᵢ)` (weights positive).
+    pub fn from_homogeneous(homogeneous: Vec<[f64; 3]>) -> RationalBezier {
+        RationalBezier { homogeneous }
+    }
+
+    /// The homogeneous control points `(wᵢ xᵢ, wᵢ yᵢ, wᵢ)`.
+    pub fn homogeneous(&self) -> &[[f64; 3]] {
+        &self.homogeneous
+    }
+
+    /// The control points `Pᵢ` (projected).
+    pub fn control_points(&self) -> Vec<Point> {
+        self.homogeneous.iter().map(|&h| project(h)).collect()
+    }
+
+    /// True when every weight is the same (the curve is polynomial).
+    pub fn is_polynomial(&self) -> bool {
+        let w0 = self.homogeneous.first().map_or(1.0, |h| h[2]);
+        self.homogeneous.iter().all(|h| h[2] == w0)
+    }
+
+    /// The bounding box of the control points, which holds the curve (convex hull
+    /// property, weights positive).
+    pub fn control_box(&self) -> crate::geom::Aabb {
+        let pts = self.control_points();
+        let mut b = crate::geom::Aabb::from_array([
+            f64::INFINITY,
+            f64::INFINITY,
+            -f64::INFINITY,
+            -f64::INFINITY,
+        ]);
+        for p in pts {
+            b.min.x = b.min.x.min(p.x);
+            b.min.y = b.min.y.min(p.y);
+            b.max.x = b.max.x.max(p.x);
+            b.max.y = b.max.y.max(p.y);
+        }
+        b
+    }
+
+    /// The tangent directions at `t = 0` and `t = 1` from the control polygon: towards
+    /// the first control point distinct from the start, and from the last distinct from
+    /// the end (exact directions even where the derivative vanishes; zero if the curve is
+    /// a point).
+    pub fn end_tangents(&self) -> (Point, Point) {
+        let pts = self.control_points();
+        let (first, last) = (pts[0], pts[pts.len() - 1]);
+        let start = pts
+            .iter()
+            .find(|&&p| p != first)
+            .map_or(Point::new(0.0, 0.0), |&p| p - first);
+        let end = pts
+            .iter()
+            .rev()
+            .find(|&&p| p != last)
+            .map_or(Point::new(0.0, 0.0), |&p| last - p);
+        (start, end)
+    }
+
+    /// The point, first and second derivatives at `t`: with `H = (X, Y, W)`,
+    /// `C = H/W`, `C' = (H' − W' C)/W`, `C'' = (H'' − 2 W' C' − W'' C)/W` (per coordinate).
+    pub fn derivatives(&self, t: f64) -> [Point; 3] {
+        let n = self.degree();
+        let h0 = de_casteljau(&self.homogeneous, t, |_, _| {});
+        let diff = |pts: &[[f64; 3]], k: usize| -> Vec<[f64; 3]> {
+            pts.windows(2)
+                .map(|p| std::array::from_fn(|c| k as f64 * (p[1][c] - p[0][c])))
+                .collect()
+        };
+        let d1 = if n >= 1 {
+            diff(&self.homogeneous, n)
+        } else {
+            Vec::new()
+        };
+        let d2 = if n >= 2 { diff(&d1, n - 1) } else { Vec::new() };
+        let at = |v: &[[f64; 3]]| {
+            if v.is_empty() {
+                [0.0; 3]
+            } else {
+                de_casteljau(v, t, |_, _| {})
+            }
+        };
+        let (h1, h2) = (at(&d1), at(&d2));
+        let w = h0[2];
+        let c = Point::new(h0[0] / w, h0[1] / w);
+        let c1 = Point::new((h1[0] - h1[2] * c.x) / w, (h1[1] - h1[2] * c.y) / w);
+        let c2 = Point::new(
+            (h2[0] - 2.0 * h1[2] * c1.x - h2[2] * c.x) / w,
+            (h2[1] - 2.0 * h1[2] * c1.y - h2[2] * c.y) / w,
+        );
+        [c, c1, c2]
+    }
+
     /// The degree `n`.
     pub fn degree(&self) -> usize {
         self.homogeneous.len().saturating_sub(1)
@@ -142,6 +235,22 @@ mod tests {
             let d = c.derivative(t);
             assert!(d.dist(fd) < 1e-8, "{d:?} {fd:?}");
             assert!(d.dot(c.eval(t)).abs() < 1e-12); // tangent ⟂ radius
+        }
+    }
+
+    #[test]
+    fn second_derivative_matches_differences_and_circle_curvature() {
+        let c = quarter_circle();
+        for t in [0.2, 0.5, 0.8] {
+            let [p, d1, d2] = c.derivatives(t);
+            assert!(p.dist(c.eval(t)) < 1e-15);
+            assert!(d1.dist(c.derivative(t)) < 1e-12);
+            let h = 1e-5;
+            let fd = (c.derivative(t + h) - c.derivative(t - h)) * (0.5 / h);
+            assert!(d2.dist(fd) < 1e-6, "{d2:?} {fd:?}");
+            // unit circle: curvature (x'y'' − y'x'')/|C'|³ = 1
+            let k = d1.cross(d2) / d1.norm().powi(3);
+            assert!((k - 1.0).abs() < 1e-12, "{k}");
         }
     }
 

@@ -539,6 +539,25 @@ impl Bernstein1 {
         self.coef.len() - 1
     }
 
+    /// The exact form with coefficients `coef` (error bound 0).
+    pub fn exact(coef: Vec<f64>) -> Self {
+        Bernstein1 { coef, err: 0.0 }
+    }
+
+    /// The constant `c` (degree 0, exact).
+    pub fn constant(c: f64) -> Self {
+        Self::exact(vec![c])
+    }
+
+    /// The form times the constant `k`.
+    pub fn scale(&self, k: f64) -> Self {
+        let m = max_abs(&self.coef);
+        Bernstein1 {
+            coef: self.coef.iter().map(|c| c * k).collect(),
+            err: grown(self.err * k.abs(), m * k.abs(), 1.0),
+        }
+    }
+
     /// The Bernstein form over `[0,1]` of `p(t) = Σ power[k] tᵏ` restricted to
     /// `t ∈ interval` (relative parameter `u = (t − lo)/(hi − lo)`).
     pub fn from_poly_1d(power: &[f64], interval: Interval) -> Self {
@@ -771,6 +790,83 @@ impl Bernstein2 {
         Self::from_form(self.view().mul(o.view()))
     }
 
+    /// The tensor product `f(u, v) = a(u) · b(v)` of two univariate forms (degrees
+    /// `(deg a, deg b)`): the product of `a` and `b` seen as forms in different
+    /// variables.
+    pub fn tensor(a: &Bernstein1, b: &Bernstein1) -> Self {
+        let va = View {
+            deg: [a.degree(), 0, 0],
+            coef: &a.coef,
+            err: a.err,
+        };
+        let vb = View {
+            deg: [0, b.degree(), 0],
+            coef: &b.coef,
+            err: b.err,
+        };
+        Self::from_form(va.mul(vb))
+    }
+
+    /// The restriction to the line where the `axis` coordinate is `t ∈ [0, 1]`, as a
+    /// form in the other relative coordinate (de Casteljau split, then the side:
+    /// certified like [`Self::split`]).
+    pub fn restrict(&self, axis: Axis, t: f64) -> Bernstein1 {
+        if t >= 1.0 {
+            return self.edge(axis, 1);
+        }
+        let (_, upper) = self.split(axis, t);
+        upper.edge(axis, 0)
+    }
+
+    /// The polynomial in the power basis of the relative coordinates `(u, v)` (variables
+    /// `x`, `y` of [`Poly`]): `B_i^n(u) = Σ_k C(n,i) C(n−i,k−i) (−1)^(k−i) u^k`. Plain
+    /// f64 (not certified); for the 2-D solver over `[0, 1]²`.
+    pub fn to_poly(&self) -> Poly {
+        let [dx, dy] = self.deg;
+        let power = |n: usize| -> Vec<Vec<f64>> {
+            let c: Vec<Vec<f64>> = (0..=n).map(binomials).collect();
+            (0..=n)
+                .map(|i| {
+                    (0..=n)
+                        .map(|k| {
+                            if k < i {
+                                0.0
+                            } else {
+                                let sign = if (k - i) % 2 == 0 { 1.0 } else { -1.0 };
+                                c[n][i] * c[n - i][k - i] * sign
+                            }
+                        })
+                        .collect()
+                })
+                .collect()
+        };
+        let (px, py) = (power(dx), power(dy));
+        let mut acc = vec![0.0; (dx + 1) * (dy + 1)];
+        for (i, row) in px.iter().enumerate() {
+            for (j, col) in py.iter().enumerate() {
+                let b = self.coef[i * (dy + 1) + j];
+                if b == 0.0 {
+                    continue;
+                }
+                for k in i..=dx {
+                    for l in j..=dy {
+                        acc[k * (dy + 1) + l] += b * row[k] * col[l];
+                    }
+                }
+            }
+        }
+        let mut terms = Vec::new();
+        for k in 0..=dx {
+            for l in 0..=dy {
+                let c = acc[k * (dy + 1) + l];
+                if c != 0.0 {
+                    terms.push(([k as u32, l as u32, 0], c));
+                }
+            }
+        }
+        Poly::from_terms(terms)
+    }
+
     /// The restriction to the box side where the `axis` coordinate is `at` (0: lower
     /// side, 1: upper side), as a form in the other relative coordinate. Exact: the
     /// side's coefficients are a subset of the box's.
@@ -919,6 +1015,25 @@ mod tests {
                     .collect(),
             )
         })
+    }
+
+    #[test]
+    fn tensor_restrict_and_power_basis_agree_with_evaluation() {
+        let a = Bernstein1::exact(vec![1.0, -2.0, 0.5, 3.0]);
+        let b = Bernstein1::exact(vec![0.25, 2.0, -1.0]);
+        let f = Bernstein2::tensor(&a, &b).add(&Bernstein2::tensor(&b, &a.scale(0.5)));
+        let p = f.to_poly();
+        for (u, v) in [(0.0, 0.0), (0.3, 0.7), (1.0, 0.2), (0.9, 1.0)] {
+            let want = a.eval(u) * b.eval(v) + 0.5 * b.eval(u) * a.eval(v);
+            assert!((f.eval(u, v) - want).abs() < 1e-12);
+            assert!((p.eval(u, v, 0.0) - want).abs() < 1e-12);
+            assert!((f.restrict(Axis::X, u).eval(v) - want).abs() < 1e-12);
+            assert!((f.restrict(Axis::Y, v).eval(u) - want).abs() < 1e-12);
+        }
+        assert_eq!(
+            Bernstein1::constant(2.0).mul(&a).eval(0.4),
+            2.0 * a.eval(0.4)
+        );
     }
 
     proptest! {

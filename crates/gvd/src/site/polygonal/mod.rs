@@ -424,7 +424,8 @@ fn check_conflicts(features: &[Feature]) -> Result<(), Error> {
             ]
         })
         .collect();
-    let near = NEAR_TOUCH * crate::geom::grid::bounds_of_points(points.iter().copied()).longest_side();
+    let near =
+        NEAR_TOUCH * crate::geom::grid::bounds_of_points(points.iter().copied()).longest_side();
     let Some(c) = find_conflict(&points, &segments, &[], near) else {
         return Ok(());
     };

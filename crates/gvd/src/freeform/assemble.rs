@@ -1,0 +1,177 @@
+//! From trimmed runs to a `VoronoiComplex`: run ends that meet (within a small
+//! tolerance) are clustered; a cluster where three or more generators meet is a Voronoi
+//! vertex, a cluster of two runs of the same two generators is an inner joint (where a
+//! foot moves from one span to the next, or a slab side), and the runs are chained
+//! through the joints into edges.
+
+use super::pieces::Pieces;
+use super::trim::{End, Run};
+use crate::complex::{Edge, Generator, SmallVec, Vertex, VoronoiComplex};
+use crate::geom::Point;
+use std::collections::HashMap;
+
+/// The complex of the runs; also returns the number of loose run ends (ends that
+/// meet nothing and are not on the boundary).
+pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usize) {
+    let gens = |r: &Run| {
+        let mut g = [pieces.generator(r.pair[0]), pieces.generator(r.pair[1])];
+        g.sort();
+        g
+    };
+    // cluster the run ends on a grid of cells of size `tol`
+    let mut ends: Vec<(Point, usize, usize)> = Vec::new(); // point, run, which end
+    for (k, r) in runs.iter().enumerate() {
+        ends.push((r.points[0], k, 0));
+        ends.push((*r.points.last().unwrap(), k, 1));
+    }
+    let cell = |p: Point| ((p.x / tol).floor() as i64, (p.y / tol).floor() as i64);
+    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    let mut cluster_of = vec![usize::MAX; ends.len()];
+    let mut clusters: Vec<Vec<usize>> = Vec::new();
+    for (i, &(p, _, _)) in ends.iter().enumerate() {
+        let (cx, cy) = cell(p);
+        let mut found = None;
+        'search: for dx in -1..=1 {
+            for dy in -1..=1 {
+                if let Some(list) = grid.get(&(cx + dx, cy + dy)) {
+                    for &j in list {
+                        if ends[j].0.dist(p) <= tol {
+                            found = Some(cluster_of[j]);
+                            break 'search;
+                        }
+                    }
+                }
+            }
+        }
+        let c = found.unwrap_or_else(|| {
+            clusters.push(Vec::new());
+            clusters.len() - 1
+        });
+        cluster_of[i] = c;
+        clusters[c].push(i);
+        grid.entry((cx, cy)).or_default().push(i);
+    }
+    // a cluster's generators and whether it is a vertex
+    let mut complex = VoronoiComplex::default();
+    let mut vertex_of = vec![None; clusters.len()];
+    let mut boundary = vec![false; clusters.len()];
+    let mut loose = 0;
+    for (c, members) in clusters.iter().enumerate() {
+        let mut g: Vec<Generator> = Vec::new();
+        let mut third = false;
+        for &i in members {
+            let (_, k, which) = ends[i];
+            let r = &runs[k];
+            g.extend(gens(r));
+            match r.ends[which] {
+                End::Vertex(h) => {
+                    g.push(pieces.generator(h));
+                    third = true;
+                }
+                End::Boundary => boundary[c] = true,
+                End::Open => {}
+            }
+        }
+        g.sort();
+        g.dedup();
+        // the end of a ridge (an edge between two parts of one generator) at a centre of
+        // curvature: a vertex listing that generator twice
+        let ridge_end = members.len() == 1 && !boundary[c] && !third && g.len() == 1;
+        if ridge_end {
+            g.push(g[0]);
+        }
+        if ridge_end || g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
+            let at = members
+                .iter()
+                .map(|&i| ends[i].0)
+                .fold(Point::new(0.0, 0.0), |a, p| a + p)
+                * (1.0 / members.len() as f64);
+            vertex_of[c] = Some(complex.vertices.len());
+            complex.vertices.push(Vertex {
+                at,
+                sites: SmallVec::from_vec(g),
+            });
+        } else if members.len() == 1 && !boundary[c] && !third {
+            loose += 1;
+        }
+    }
+    // chain runs through joints (clusters of exactly two run ends, not vertices)
+    let mut used = vec![false; runs.len()];
+    let other_end = |c: usize, i: usize| clusters[c].iter().copied().find(|&j| j != i);
+    for start in 0..runs.len() {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let g = gens(&runs[start]);
+        // walk backwards from the start's first end to find the chain's beginning
+        let mut chain: Vec<(usize, bool)> = vec![(start, false)]; // run, reversed
+        for dir in [0usize, 1] {
+            let (mut k, mut which) = (start, dir);
+            loop {
+                let i = 2 * k + which;
+                let c = cluster_of[i];
+                if vertex_of[c].is_some() || boundary[c] || clusters[c].len() != 2 {
+                    break;
+                }
+                let Some(j) = other_end(c, i) else { break };
+                let (_, kn, wn) = ends[j];
+                if used[kn] || gens(&runs[kn]) != g {
+                    break;
+                }
+                used[kn] = true;
+                // entering run kn at end wn; continue from its other end
+                let reversed = if dir == 1 { wn == 1 } else { wn == 0 };
+                if dir == 1 {
+                    chain.push((kn, reversed));
+                } else {
+                    chain.insert(0, (kn, reversed));
+                }
+                k = kn;
+                which = 1 - wn;
+            }
+        }
+        let mut points: Vec<Point> = Vec::new();
+        for &(k, rev) in &chain {
+            let mut p = runs[k].points.clone();
+            if rev {
+                p.reverse();
+            }
+            if points
+                .last()
+                .is_some_and(|q| p.first().is_some_and(|f| q.dist(*f) <= tol))
+            {
+                p.remove(0);
+            }
+            points.extend(p);
+        }
+        let (k0, rev0) = chain[0];
+        let (k1, rev1) = *chain.last().unwrap();
+        let first_end = 2 * k0 + usize::from(rev0);
+        let last_end = 2 * k1 + usize::from(!rev1);
+        let (c0, c1) = (cluster_of[first_end], cluster_of[last_end]);
+        let (from, to) = (vertex_of[c0], vertex_of[c1]);
+        if let Some(v) = from {
+            points[0] = complex.vertices[v].at;
+        }
+        if let Some(v) = to {
+            *points.last_mut().unwrap() = complex.vertices[v].at;
+        }
+        let closed = from.is_none() && to.is_none() && c0 == c1 && chain.len() > 1;
+        if closed {
+            let first = points[0];
+            *points.last_mut().unwrap() = first;
+        }
+        if points.len() < 2 {
+            continue;
+        }
+        complex.edges.push(Edge {
+            sites: g,
+            from,
+            to,
+            points: SmallVec::from_vec(points),
+            bisector: Vec::new(),
+        });
+    }
+    (complex, loose)
+}

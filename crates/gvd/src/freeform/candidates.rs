@@ -1,0 +1,98 @@
+//! The pairs of features that may share a Voronoi edge inside the domain, by a
+//! conservative grid test: if `P` is equidistant (`D`) from features `a`, `b` and no
+//! feature is nearer, then at the grid point `q` of its cell (`|P − q| ≤ ρ`)
+//! `dist(q, a) ≤ D + ρ ≤ min_k dist(q, k) + 2ρ`. With lower bounds `ℓ` (the sampled
+//! distance minus half the longest sample step) and upper bounds `u` (the sampled
+//! distance) of the distances, `a` and `b` are candidates at `q` when
+//! `ℓ(q, a) ≤ min_k u(q, k) + 2ρ`. Every pair on the diagram is found.
+
+use super::nearest::Features;
+use super::pieces::Feature;
+use crate::geom::{Aabb, Point};
+use std::collections::BTreeSet;
+
+/// Grid points per side.
+const GRID: usize = 96;
+/// Samples per span.
+const SAMPLES: usize = 32;
+
+/// The candidate pairs (each once, first < second), excluding pairs that never bound an
+/// edge: two features of one site in `voronoi` mode, a corner and its own spans.
+pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
+    let pieces = features.pieces;
+    // (feature, samples, half the longest step)
+    let mut sampled: Vec<(Feature, Vec<Point>, f64, Aabb)> = Vec::new();
+    for (k, s) in pieces.spans.iter().enumerate() {
+        let pts = s.curve.sample(SAMPLES);
+        // the curve between samples stays within half an arc step of them; the arc is
+        // bounded by the control polygon's length per step
+        let poly: f64 = s
+            .curve
+            .control_points()
+            .windows(2)
+            .map(|w| w[0].dist(w[1]))
+            .sum();
+        let step = pts.windows(2).map(|w| w[0].dist(w[1])).fold(0.0, f64::max);
+        let slack = 0.5 * step.max(poly / SAMPLES as f64 * 2.0);
+        sampled.push((Feature::Span(k), pts, slack, s.bbox));
+    }
+    for &k in &features.active {
+        let p = pieces.corners[k].at;
+        sampled.push((Feature::Corner(k), vec![p], 0.0, Aabb::new(p, p)));
+    }
+    let (dx, dy) = (domain.width() / GRID as f64, domain.height() / GRID as f64);
+    let rho = 0.5 * dx.hypot(dy);
+    let dist =
+        |q: Point, pts: &[Point]| pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min);
+    let mut out: BTreeSet<[Feature; 2]> = BTreeSet::new();
+    let mut near: Vec<usize> = Vec::new();
+    for i in 0..GRID {
+        for j in 0..GRID {
+            let q = Point::new(
+                domain.min.x + (i as f64 + 0.5) * dx,
+                domain.min.y + (j as f64 + 0.5) * dy,
+            );
+            let mut upper = f64::INFINITY;
+            for (_, pts, _, b) in &sampled {
+                if b.outside_distance(q) < upper {
+                    upper = upper.min(dist(q, pts));
+                }
+            }
+            near.clear();
+            for (k, (_, pts, slack, b)) in sampled.iter().enumerate() {
+                let bound = upper + 2.0 * rho;
+                if b.outside_distance(q) <= bound && dist(q, pts) - slack <= bound {
+                    near.push(k);
+                }
+            }
+            for x in 0..near.len() {
+                for y in x + 1..near.len() {
+                    let (f, g) = (sampled[near[x]].0, sampled[near[y]].0);
+                    if keep(features, f, g) {
+                        out.insert(if f < g { [f, g] } else { [g, f] });
+                    }
+                }
+            }
+        }
+    }
+    out.into_iter().collect()
+}
+
+fn keep(features: &Features, f: Feature, g: Feature) -> bool {
+    let pieces = features.pieces;
+    let (sf, sg) = (pieces.site(f), pieces.site(g));
+    if !pieces.featured {
+        return sf != sg;
+    }
+    // a corner and the spans that end at it meet only at the corner
+    let touches = |c: usize, s: usize| {
+        let (c, s) = (&pieces.corners[c], &pieces.spans[s].curve);
+        c.at == s.eval(0.0) || c.at == s.eval(1.0)
+    };
+    match (f, g) {
+        (Feature::Corner(c), Feature::Span(s)) | (Feature::Span(s), Feature::Corner(c)) => {
+            !(sf == sg && touches(c, s))
+        }
+        _ => true,
+    }
+}

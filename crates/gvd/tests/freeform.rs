@@ -1,0 +1,280 @@
+//! The freeform engine (HREK07) against independent references: a dense sampling of
+//! the curves written here (Cox–de Boor, not the engine's knot insertion), the
+//! incremental engine on segments, and the subdivision engine on circles.
+
+use gvd::{compute, Engine, Error, Mode, Options, Point, Scene, SiteKind, VoronoiComplex};
+use std::path::Path;
+
+fn scene(name: &str) -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/freeform")
+        .join(name);
+    Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap()
+}
+
+fn run(sc: &Scene, engine: Engine) -> VoronoiComplex {
+    let d = compute(
+        sc,
+        &Options {
+            engine,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    d.check_invariants().unwrap();
+    d
+}
+
+/// `n + 1` points of a B-spline (or a Bézier) by the Cox–de Boor recursion.
+fn dense(kind: &SiteKind, n: usize) -> Vec<Point> {
+    let (p, ctrl, knots, weights) = match kind {
+        SiteKind::Bezier {
+            control_points,
+            weights,
+        } => {
+            let d = control_points.len() - 1;
+            let mut k = vec![0.0; d + 1];
+            k.extend(vec![1.0; d + 1]);
+            (d, control_points.clone(), k, weights.clone())
+        }
+        SiteKind::Bspline {
+            degree,
+            control_points,
+            knots,
+            weights,
+            ..
+        } => (
+            *degree,
+            control_points.clone(),
+            knots.clone(),
+            weights.clone(),
+        ),
+        _ => panic!("not a curve"),
+    };
+    let m = ctrl.len();
+    let (a, b) = (knots[p], knots[m]);
+    let basis = |i: usize, k: usize, u: f64| -> f64 {
+        fn rec(kn: &[f64], i: usize, k: usize, u: f64, last: bool) -> f64 {
+            if k == 0 {
+                let inside = kn[i] <= u && u < kn[i + 1];
+                let at_end = last && u == kn[i + 1] && kn[i] < kn[i + 1];
+                return if inside || at_end { 1.0 } else { 0.0 };
+            }
+            let mut s = 0.0;
+            if kn[i + k] > kn[i] {
+                s += (u - kn[i]) / (kn[i + k] - kn[i]) * rec(kn, i, k - 1, u, last);
+            }
+            if kn[i + k + 1] > kn[i + 1] {
+                s += (kn[i + k + 1] - u) / (kn[i + k + 1] - kn[i + 1])
+                    * rec(kn, i + 1, k - 1, u, last);
+            }
+            s
+        }
+        rec(&knots, i, k, u, u == b)
+    };
+    (0..=n)
+        .map(|j| {
+            let u = a + (b - a) * j as f64 / n as f64;
+            let (mut x, mut y, mut w) = (0.0, 0.0, 0.0);
+            for i in 0..m {
+                let bi = basis(i, p, u) * weights.as_ref().map_or(1.0, |w| w[i]);
+                x += bi * ctrl[i].x;
+                y += bi * ctrl[i].y;
+                w += bi;
+            }
+            Point::new(x / w, y / w)
+        })
+        .collect()
+}
+
+fn seg_dist(q: Point, a: Point, b: Point) -> f64 {
+    let d = b - a;
+    let t = ((q - a).dot(d) / d.dot(d)).clamp(0.0, 1.0);
+    q.dist(a + d * t)
+}
+
+fn poly_dist(q: Point, pts: &[Point]) -> f64 {
+    pts.windows(2)
+        .map(|w| seg_dist(q, w[0], w[1]))
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn inside(q: Point, ring: &[Point]) -> bool {
+    let mut c = false;
+    for w in ring.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if (a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            c = !c;
+        }
+    }
+    c
+}
+
+/// Every edge point of a `voronoi` diagram is outside the closed curves, at equal
+/// distance (within epsilon) from its two sites, and no site is nearer.
+fn check_by_brute_force(sc: &Scene, d: &VoronoiComplex) {
+    let curves: Vec<Vec<Point>> = sc.sites().iter().map(|s| dense(&s.kind, 20000)).collect();
+    let eps = sc.epsilon();
+    let mut checked = 0;
+    for e in &d.edges {
+        let (i, j) = (e.sites[0].site(), e.sites[1].site());
+        for q in e.points.iter().step_by(2) {
+            let dist: Vec<f64> = curves.iter().map(|c| poly_dist(*q, c)).collect();
+            assert!(
+                (dist[i] - dist[j]).abs() < eps,
+                "{q:?}: {} vs {}",
+                dist[i],
+                dist[j]
+            );
+            let others = (0..dist.len())
+                .filter(|&k| k != i && k != j)
+                .map(|k| dist[k]);
+            assert!(
+                others.fold(f64::INFINITY, f64::min) > dist[i].min(dist[j]) - eps,
+                "{q:?}"
+            );
+            for (k, c) in curves.iter().enumerate() {
+                if c[0].dist(*c.last().unwrap()) < 1e-9 {
+                    assert!(!inside(*q, c) || dist[k] < eps, "{q:?} inside site {k}");
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 30, "{checked} points checked");
+}
+
+#[test]
+fn corpus_voronoi_scenes_pass_a_brute_force_check() {
+    for name in [
+        "freeform-convex3-voronoi.json",
+        "freeform-nonconvex2-voronoi.json",
+        "freeform-closed6-voronoi.json",
+    ] {
+        let sc = scene(name);
+        let d = run(&sc, Engine::Freeform);
+        assert_eq!(d.stats["engine"], "freeform");
+        check_by_brute_force(&sc, &d);
+        // the cells cover the domain once
+        let area: f64 = d
+            .cells
+            .iter()
+            .flat_map(|c| c.rings.iter().enumerate())
+            .map(|(k, r)| {
+                let a = gvd::geom::ring::signed_area(r).abs();
+                if k == 0 {
+                    a
+                } else {
+                    -a
+                }
+            })
+            .sum();
+        assert!((area - 16.0).abs() < 1e-6, "{name}: cells cover {area}");
+    }
+}
+
+#[test]
+fn auto_picks_the_freeform_engine_for_curves() {
+    let d = run(&scene("freeform-convex3-voronoi.json"), Engine::Auto);
+    assert_eq!(d.stats["engine"], "freeform");
+}
+
+/// Vertices of two diagrams, matched one to one within `tol`.
+fn same_vertices(a: &VoronoiComplex, b: &VoronoiComplex, tol: f64) {
+    assert_eq!(a.vertices.len(), b.vertices.len());
+    for v in &a.vertices {
+        let m = b.vertices.iter().find(|w| v.at.dist(w.at) < tol);
+        let w = m.unwrap_or_else(|| panic!("no vertex near {:?}", v.at));
+        let (mut s, mut t) = (v.sites.to_vec(), w.sites.to_vec());
+        s.sort();
+        t.sort();
+        assert_eq!(s, t);
+    }
+}
+
+#[test]
+fn degree_one_beziers_agree_with_the_incremental_segments() {
+    let ff = run(&scene("freeform-segments4.json"), Engine::Freeform);
+    let inc = run(&scene("segments4.json"), Engine::Incremental);
+    same_vertices(&ff, &inc, 1e-9);
+    assert_eq!(ff.edges.len(), inc.edges.len());
+}
+
+#[test]
+fn nurbs_circles_agree_with_the_subdivision_circles() {
+    let ff = run(&scene("freeform-nurbs-circles3.json"), Engine::Freeform);
+    let sub = run(&scene("circles3.json"), Engine::Subdivision);
+    same_vertices(&ff, &sub, 1e-6);
+    assert_eq!(ff.edges.len(), sub.edges.len());
+}
+
+#[test]
+fn medial_axis_of_a_bezier_domain_stays_inside_and_is_equidistant() {
+    let sc = scene("freeform-bezier4-medial_axis.json");
+    assert_eq!(sc.mode(), Mode::MedialAxis);
+    let d = run(&sc, Engine::Freeform);
+    let ring: Vec<Point> = sc
+        .sites()
+        .iter()
+        .flat_map(|s| dense(&s.kind, 4000))
+        .collect();
+    assert!(!d.edges.is_empty() && !d.vertices.is_empty());
+    for e in &d.edges {
+        for q in e.points.iter().step_by(5) {
+            assert!(inside(*q, &ring), "{q:?} outside the domain");
+        }
+    }
+    // interior vertices: equidistant from their pieces' curves (≥ 3 generators)
+    let curves: Vec<Vec<Point>> = sc.sites().iter().map(|s| dense(&s.kind, 20000)).collect();
+    for v in d.vertices.iter().filter(|v| v.sites.len() >= 3) {
+        let r: Vec<f64> = v
+            .sites
+            .iter()
+            .map(|g| poly_dist(v.at, &curves[g.site()]))
+            .collect();
+        let (lo, hi) = r
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+        assert!(hi - lo < sc.epsilon(), "{:?}: {r:?}", v.at);
+    }
+}
+
+#[test]
+fn a_bspline_with_an_interior_cusp_gets_a_corner_and_its_point_bisector() {
+    // a cubic with a triple interior knot: a C0 corner at the knot (pointing at the
+    // segment below), beside a straight cubic
+    let text = r#"{"domain": [-2, -2, 2, 2], "epsilon": 0.001, "sites": [
+        {"kind": "bspline", "degree": 3, "knots": [0, 0, 0, 0, 1, 1, 1, 2, 2, 2, 2],
+         "control_points": [[-1.2, 0.8], [-0.9, 0.3], [-0.4, 0.1], [0.0, -0.3], [0.4, 0.1], [0.9, 0.3], [1.2, 0.8]]},
+        {"kind": "bezier", "control_points": [[-1.0, -1.0], [-0.3, -1.1], [0.3, -0.9], [1.0, -1.0]]}]}"#;
+    let sc = Scene::from_json(text).unwrap();
+    let d = run(&sc, Engine::Freeform);
+    assert_eq!(d.stats["corners"], 5); // the cusp and the four open ends
+    check_by_brute_force(&sc, &d);
+    // the edge passes below the cusp, where the cusp point itself is the nearest
+    let below = Point::new(0.0, -0.3 - 0.5 * (1.0 - 0.3));
+    let near = d
+        .edges
+        .iter()
+        .flat_map(|e| e.points.iter())
+        .map(|p| p.dist(below))
+        .fold(f64::INFINITY, f64::min);
+    assert!(near < 0.05, "no edge below the cusp ({near})");
+}
+
+#[test]
+fn other_site_kinds_are_refused_by_name() {
+    let text = r#"{"domain": [-2, -2, 2, 2], "sites": [
+        {"kind": "bezier", "control_points": [[0, 0], [1, 1]]},
+        {"kind": "point", "at": [1, -1]}]}"#;
+    let sc = Scene::from_json(text).unwrap();
+    let err = compute(
+        &sc,
+        &Options {
+            engine: Engine::Freeform,
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
+    assert!(matches!(err, Error::Unsupported { site: 1, .. }), "{err}");
+}

@@ -118,7 +118,7 @@ fn check_by_brute_force(sc: &Scene, d: &VoronoiComplex) {
     let mut checked = 0;
     for e in &d.edges {
         let (i, j) = (e.sites[0].site(), e.sites[1].site());
-        for q in e.points.iter().step_by(3) {
+        for q in e.points.iter().step_by(2) {
             let dist: Vec<f64> = curves.iter().map(|c| poly_dist(*q, c)).collect();
             assert!(
                 (dist[i] - dist[j]).abs() < eps,
@@ -141,7 +141,7 @@ fn check_by_brute_force(sc: &Scene, d: &VoronoiComplex) {
             checked += 1;
         }
     }
-    assert!(checked > 50, "{checked} points checked");
+    assert!(checked > 30, "{checked} points checked");
 }
 
 #[test]

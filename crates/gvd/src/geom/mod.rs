@@ -244,6 +244,14 @@ impl Aabb {
         }
         (s0 <= s1).then_some((s0, s1))
     }
+
+    /// The range of `t ∈ [0, 1]` for which `a + t (b − a)` lies in the box, if any.
+    pub fn segment_range(&self, a: Point, b: Point) -> Option<(f64, f64)> {
+        let (t0, t1) = self.line_range(a, b - a)?;
+        let (t0, t1) = (t0.max(0.0), t1.min(1.0));
+        (t0 <= t1).then_some((t0, t1))
+    }
+
     /// The distance from `p` to the box boundary when `p` lies outside, else 0.
     pub fn outside_distance(&self, p: Point) -> f64 {
         let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);

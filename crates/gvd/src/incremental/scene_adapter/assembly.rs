@@ -523,7 +523,7 @@ fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool, usi
     let mut cur: Vec<Point> = Vec::new();
     let (mut cur_cut, mut cur_first) = (false, 0);
     for (k, w) in points.windows(2).enumerate() {
-        let Some((t0, t1)) = clip_range(w[0], w[1], b) else {
+        let Some((t0, t1)) = b.segment_range(w[0], w[1]) else {
             if !cur.is_empty() {
                 pieces.push((std::mem::take(&mut cur), cur_cut, true, cur_first));
             }
@@ -544,11 +544,4 @@ fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool, usi
     }
     pieces.retain(|(p, ..)| p.len() >= 2);
     pieces
-}
-
-/// The parameter range of `a + t (b − a)`, `t ∈ [0, 1]`, inside `bx`.
-fn clip_range(a: Point, b: Point, bx: &Aabb) -> Option<(f64, f64)> {
-    let (t0, t1) = bx.line_range(a, b - a)?;
-    let (t0, t1) = (t0.max(0.0), t1.min(1.0));
-    (t0 <= t1).then_some((t0, t1))
 }

@@ -137,32 +137,6 @@ fn drop_unused(
     }
 }
 
-/// The parameter range of `a + t (b − a)`, `t ∈ [0, 1]`, inside `d` (Liang–Barsky).
-fn clip_range(a: Point, b: Point, d: &Aabb) -> Option<(f64, f64)> {
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    let delta = b - a;
-    for (p, q) in [
-        (-delta.x, a.x - d.min.x),
-        (delta.x, d.max.x - a.x),
-        (-delta.y, a.y - d.min.y),
-        (delta.y, d.max.y - a.y),
-    ] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return None;
-            }
-        } else {
-            let r = q / p;
-            if p < 0.0 {
-                t0 = t0.max(r);
-            } else {
-                t1 = t1.min(r);
-            }
-        }
-    }
-    (t0 <= t1).then_some((t0, t1))
-}
-
 /// The complex inside the domain `d`: edges cut where they leave it (those ends become
 /// boundary ends), vertices outside dropped.
 pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
@@ -178,7 +152,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
         let n = e.points.len();
         for k in 0..n.saturating_sub(1) {
             let (a, b) = (e.points[k], e.points[k + 1]);
-            let Some((t0, t1)) = clip_range(a, b, d) else {
+            let Some((t0, t1)) = d.segment_range(a, b) else {
                 continue;
             };
             let (p, q) = (a.lerp(b, t0), a.lerp(b, t1));

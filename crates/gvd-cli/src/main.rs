@@ -1,6 +1,7 @@
 //! `gvd`: generalized Voronoi diagrams from the command line.
 
 mod bench;
+mod bench_algebraic;
 mod bench_implicit;
 mod formats;
 mod output;
@@ -152,9 +153,10 @@ struct VerifyArgs {
 
 #[derive(Args)]
 struct BenchArgs {
-    /// Which table: `emiris-table1` or `implicit`.
+    /// Which table: `emiris-table1`, `implicit` or `shou`.
     table: String,
-    /// Also run 10^4 and 10^5 Euclidean sites and the multi-core speed-up.
+    /// Larger runs: 10^4 and 10^5 Euclidean sites and the multi-core speed-up
+    /// (`emiris-table1`, `implicit`), no box cap per run (`shou`).
     #[arg(long)]
     large: bool,
     /// Repetitions per row (the best time is reported).
@@ -366,8 +368,9 @@ fn bench(args: BenchArgs) -> Result<ExitCode> {
     match args.table.as_str() {
         "emiris-table1" => bench::emiris_table1(args.large, repeat),
         "implicit" => bench_implicit::implicit(args.large, repeat),
+        "shou" => bench_algebraic::shou(args.large, repeat),
         other => bail!(
-            "unknown table '{}' (known: emiris-table1, implicit)",
+            "unknown table '{}' (known: emiris-table1, implicit, shou)",
             clip(other)
         ),
     }

@@ -205,6 +205,14 @@ impl Aabb {
             ),
         }
     }
+    /// The common part of two boxes, if they meet.
+    pub fn intersection(&self, o: &Aabb) -> Option<Aabb> {
+        let b = Aabb::new(
+            Point::new(self.min.x.max(o.min.x), self.min.y.max(o.min.y)),
+            Point::new(self.max.x.min(o.max.x), self.max.y.min(o.max.y)),
+        );
+        (b.min.x <= b.max.x && b.min.y <= b.max.y).then_some(b)
+    }
     /// The four corners, counter-clockwise from `min`.
     pub fn corners(&self) -> [Point; 4] {
         [

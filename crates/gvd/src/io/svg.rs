@@ -7,6 +7,7 @@
 use crate::complex::VoronoiComplex;
 use crate::geom::bezier::RationalBezier;
 use crate::geom::{Aabb, Point};
+use crate::num::poly::Poly;
 use crate::offset::model::{Curve, Offset, Primitive};
 use crate::scene::{Scene, SiteKind};
 use std::fmt::Write;
@@ -457,17 +458,96 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
                 let dash = format!(" stroke-dasharray=\"{}\"", f.num(0.01 * size));
                 stroke(s, control_points, false, &dash);
             }
-            SiteKind::Algebraic { .. }
-            | SiteKind::Field { .. }
-            | SiteKind::ImplicitField { .. } => {}
+            SiteKind::Algebraic { equation, clip } => {
+                let window = clip.unwrap_or(scene.domain()).intersection(&scene.domain());
+                if let Some(window) = window {
+                    let mut d = String::new();
+                    for [a, b] in zero_contour(equation.poly(), &window, CONTOUR_CELLS) {
+                        f.path(&mut d, &[a, b], false);
+                    }
+                    let _ = writeln!(s, "<path d=\"{d}\"/>");
+                }
+            }
+            SiteKind::Field { .. } | SiteKind::ImplicitField { .. } => {}
         }
     }
     s.push_str("</g>\n");
 }
 
+/// Grid cells per side for drawing an algebraic curve.
+const CONTOUR_CELLS: usize = 400;
+
+/// The zero set of `f(x, y)` over `window` for drawing: marching squares on an `n × n`
+/// grid, each crossing placed by linear interpolation of `f` along the cell side; a
+/// cell with crossings on all four sides (a saddle) is joined by the asymptotic decider.
+/// A picture, not a certificate: features below the grid's spacing may be lost.
+fn zero_contour(f: &Poly, window: &Aabb, n: usize) -> Vec<[Point; 2]> {
+    let at = |i: usize, j: usize| window.at(i as f64 / n as f64, j as f64 / n as f64);
+    let value = |p: Point| f.eval(p.x, p.y, 0.0);
+    let values: Vec<f64> = (0..=n)
+        .flat_map(|j| (0..=n).map(move |i| (i, j)))
+        .map(|(i, j)| value(at(i, j)))
+        .collect();
+    let v = |i: usize, j: usize| values[j * (n + 1) + i];
+    let cross = |p: Point, q: Point, fp: f64, fq: f64| {
+        let t = if fp == fq { 0.5 } else { fp / (fp - fq) };
+        p + (q - p) * t
+    };
+    let mut segments = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            // corners counter-clockwise from the lower left; side k joins corner k to k+1
+            let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            let fs = corners.map(|(a, b)| v(a, b));
+            let ps = corners.map(|(a, b)| at(a, b));
+            let mut hits: Vec<(usize, Point)> = Vec::with_capacity(4);
+            for k in 0..4 {
+                let (fa, fb) = (fs[k], fs[(k + 1) % 4]);
+                if (fa < 0.0) != (fb < 0.0) {
+                    hits.push((k, cross(ps[k], ps[(k + 1) % 4], fa, fb)));
+                }
+            }
+            match hits.len() {
+                2 => segments.push([hits[0].1, hits[1].1]),
+                4 => {
+                    // a saddle, decided by the bilinear interpolant's value at its own
+                    // saddle point: where that has the sign of corners 0 and 2 they are
+                    // joined, and the curve cuts off corners 1 and 3 (sides 0–1, 2–3)
+                    let saddle = (fs[0] * fs[2] - fs[1] * fs[3]) / (fs[0] + fs[2] - fs[1] - fs[3]);
+                    let skip = usize::from((saddle < 0.0) != (fs[0] < 0.0));
+                    segments.push([hits[skip].1, hits[skip + 1].1]);
+                    segments.push([hits[(skip + 2) % 4].1, hits[(skip + 3) % 4].1]);
+                }
+                _ => {}
+            }
+        }
+    }
+    segments
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn zero_contour_follows_the_curve() {
+        let circle = Poly::parse("x^2 + y^2 - 1", &['x', 'y']).unwrap();
+        let window = Aabb::from_array([-2.0, -2.0, 2.0, 2.0]);
+        let segments = zero_contour(&circle, &window, 64);
+        let length: f64 = segments.iter().map(|[a, b]| a.dist(*b)).sum();
+        assert!((length - std::f64::consts::TAU).abs() < 0.01 * std::f64::consts::TAU);
+        let h = 4.0 / 64.0;
+        for [a, b] in &segments {
+            assert!((a.norm() - 1.0).abs() < h * h && (b.norm() - 1.0).abs() < h * h);
+        }
+        // a hyperbola whose two branches pass through one cell (a saddle): a wrong
+        // pairing there joins a point of one branch (x < 1/128) to the other (x > 1/128)
+        let hyperbola = Poly::parse("(x - 1/128) * (y - 1/128) - 1/100000", &['x', 'y']).unwrap();
+        let window = Aabb::from_array([-1.0, -1.0, 1.0, 1.0]);
+        for [a, b] in zero_contour(&hyperbola, &window, 64) {
+            assert_eq!(a.x < 1.0 / 128.0, b.x < 1.0 / 128.0, "{a:?} to {b:?}");
+        }
+    }
     use crate::complex::{smallvec, Cell, Edge, Generator, Vertex};
     use crate::scene::{Metric, Mode, Site};
 

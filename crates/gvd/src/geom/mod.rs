@@ -1,8 +1,9 @@
 //! Plane geometry: points, axis-aligned boxes, and the shared geometric modules
-//! (exact predicates, arcs, rings, rational Bézier curves, bucket grids).
+//! (exact predicates, arcs, rings, rational Bézier and B-spline curves, bucket grids).
 
 pub mod arc;
 pub mod bezier;
+pub mod bspline;
 pub(crate) mod grid;
 mod nearest;
 pub mod predicates;

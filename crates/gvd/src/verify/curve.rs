@@ -179,28 +179,46 @@ impl Curve {
     }
 }
 
+/// Something with a position in the plane, for the k-d tree.
+pub(super) trait Located: Copy {
+    fn at(&self) -> Point;
+}
+
+impl Located for Point {
+    fn at(&self) -> Point {
+        *self
+    }
+}
+
+impl Located for (Point, f64) {
+    fn at(&self) -> Point {
+        self.0
+    }
+}
+
 /// Orders `pts` as an implicit k-d tree: the median of the slice splits it, on `axis`.
-fn build_kd(pts: &mut [Point], axis: usize) {
+pub(super) fn build_kd<T: Located>(pts: &mut [T], axis: usize) {
     if pts.len() <= 1 {
         return;
     }
     let mid = pts.len() / 2;
-    let key = |p: &Point| if axis == 0 { p.x } else { p.y };
+    let key = |p: &T| if axis == 0 { p.at().x } else { p.at().y };
     pts.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)));
     let (lo, hi) = pts.split_at_mut(mid);
     build_kd(lo, 1 - axis);
     build_kd(&mut hi[1..], 1 - axis);
 }
 
-fn search_kd(pts: &[Point], axis: usize, q: Point, best: &mut (f64, Option<Point>)) {
+/// The nearest item of a tree built by [`build_kd`] to `q`, improving on `best`.
+pub(super) fn search_kd<T: Located>(pts: &[T], axis: usize, q: Point, best: &mut (f64, Option<T>)) {
     if pts.is_empty() {
         return;
     }
     let mid = pts.len() / 2;
-    let p = pts[mid];
+    let p = pts[mid].at();
     let d = q.dist(p);
     if d < best.0 {
-        *best = (d, Some(p));
+        *best = (d, Some(pts[mid]));
     }
     let delta = if axis == 0 { q.x - p.x } else { q.y - p.y };
     let (near, far) = if delta < 0.0 {

@@ -3,6 +3,7 @@
 //! the algorithms.
 
 use super::curve::Curve;
+use super::parametric::{spline_site, Parametric};
 use crate::error::Error;
 use crate::geom::Point;
 use crate::num::poly::Poly;
@@ -48,6 +49,8 @@ pub(super) enum Field {
     Implicit { g: Poly, h: f64 },
     /// distance to the algebraic curve `{f = 0} ∩ clip`, densely sampled
     Curve(Box<Curve>),
+    /// distance to the union of free-form curve pieces, densely sampled
+    Pieces(Vec<Parametric>),
 }
 
 /// How far the field can drop near its anchor: `field(q) ≥ lower(|q − anchor|)`,
@@ -152,12 +155,10 @@ impl Field {
                 }
                 Field::Curve(Box::new(curve))
             }
-            other => {
-                return Err(Error::Unsupported {
-                    site: i,
-                    kind: other.name().to_string(),
-                    message: "the checker cannot evaluate this kind yet".into(),
-                })
+            SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => {
+                let scale = scene.domain().longest_side();
+                let spline = spline_site(site, scale, 0.25 * scene.epsilon());
+                Field::Pieces(spline.map(|s| s.pieces).unwrap_or_default())
             }
         })
     }
@@ -234,7 +235,19 @@ impl Field {
             Field::Chain { lo, hi, .. } => radial(lo.lerp(hi, 0.5), 0.5 * lo.dist(hi)),
             Field::Arc { c, r, .. } => radial(c, r),
             Field::Ellipse { c, a, b, .. } => radial(c, a.max(b)),
-            Field::Poly { .. } | Field::Implicit { .. } | Field::Curve(_) => {
+            Field::Pieces(ref pieces) if !pieces.is_empty() => {
+                let (lo, hi) = pieces.iter().map(|p| p.bounds()).fold(
+                    (pieces[0].bounds().min, pieces[0].bounds().max),
+                    |(lo, hi), b| {
+                        (
+                            Point::new(lo.x.min(b.min.x), lo.y.min(b.min.y)),
+                            Point::new(hi.x.max(b.max.x), hi.y.max(b.max.y)),
+                        )
+                    },
+                );
+                radial(lo.lerp(hi, 0.5), 0.5 * lo.dist(hi))
+            }
+            Field::Poly { .. } | Field::Implicit { .. } | Field::Curve(_) | Field::Pieces(_) => {
                 (Point::default(), Bound::None)
             }
         }
@@ -255,7 +268,7 @@ impl Field {
             }
             Field::Circle { c, r } => q.dist(c) - r,
             Field::Segment { a, b } => q.dist(crate::geom::segment_foot(q, a, b)),
-            Field::Arc { .. } | Field::Chain { .. } | Field::Curve(_) => {
+            Field::Arc { .. } | Field::Chain { .. } | Field::Curve(_) | Field::Pieces(_) => {
                 q.dist(self.foot(q).unwrap_or(q))
             }
             Field::Ellipse { .. } if self.inside(q) => 0.0,
@@ -300,7 +313,8 @@ impl Field {
             | Field::Chain { .. }
             | Field::Arc { .. }
             | Field::Ellipse { .. }
-            | Field::Curve(_) => match self.foot(q) {
+            | Field::Curve(_)
+            | Field::Pieces(_) => match self.foot(q) {
                 Some(f) if !self.inside(q) => (q.dist(f), unit(q - f)),
                 _ => (0.0, Point::default()),
             },
@@ -352,6 +366,20 @@ impl Field {
                 Some(c + Point::new(co * f.x - s * f.y, s * f.x + co * f.y))
             }
             Field::Curve(ref c) => c.foot(q),
+            Field::Pieces(ref pieces) => {
+                // pieces whose box lies farther than the best foot so far are skipped
+                let mut best: Option<Point> = None;
+                for p in pieces {
+                    let d = best.map_or(f64::INFINITY, |f| q.dist(f));
+                    if p.bounds().outside_distance(q) < d {
+                        let f = p.foot(q);
+                        if q.dist(f) < d {
+                            best = Some(f);
+                        }
+                    }
+                }
+                best
+            }
             Field::Poly { .. } | Field::Implicit { .. } => None,
         }
     }

@@ -9,7 +9,10 @@
 //! * `polyline`: corners 0..n−1, edge k from corner k to corner k+1;
 //! * `polygon`: corners numbered across the rings (ring 0 first), edge k from corner k
 //!   to the next corner of its ring, a ring's last edge closing it;
-//! * `arc`: corner 0 = start, corner 1 = end, piece 0 (a full circle: piece 0 only).
+//! * `arc`: corner 0 = start, corner 1 = end, piece 0 (a full circle: piece 0 only);
+//! * `bezier`, `bspline`: pieces between tangent discontinuities in parameter order,
+//!   corner k at the start of piece k (an open curve's last corner at its end; a
+//!   closed curve without corners is one piece).
 //!
 //! A corner's field is the distance to its point, an edge's the distance to its closed
 //! segment, a piece's the distance to its arc. Other sites stay whole generators.
@@ -21,7 +24,8 @@
 //! [`Gens::zone_boundary`]).
 
 use super::field::Field;
-use super::region::{medial_region, Region};
+use super::parametric::{spline_site, SplineSite};
+use super::region::{boundary_segments, medial_region, Region};
 use crate::complex::{FeatureKind, Generator};
 use crate::error::Error;
 use crate::geom::grid::SparseGrid;
@@ -159,6 +163,7 @@ impl Gens {
     pub(super) fn new(scene: &Scene) -> Result<Gens, Error> {
         let featured = scene.mode() != Mode::Voronoi;
         let h = 1e-6 * scene.domain().longest_side();
+        let (scale, spacing) = (scene.domain().longest_side(), 0.25 * scene.epsilon());
         let mut g = Gens {
             fields: Vec::new(),
             labels: Vec::new(),
@@ -207,6 +212,11 @@ impl Gens {
                         start_angle,
                         end_angle,
                     } => g.add_arc(i, *center, *radius, *start_angle, *end_angle),
+                    SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => {
+                        if let Some(spline) = spline_site(kind, scale, spacing) {
+                            g.add_spline(i, spline);
+                        }
+                    }
                     other => {
                         let f = Field::of_site(i, other, h, scene)?;
                         let curved = matches!(f, Field::Ellipse { .. });
@@ -226,6 +236,13 @@ impl Gens {
                     SiteKind::Ellipse { .. } => g.masks.push(Mask::Ellipse {
                         gen: g.fields.len() - 1,
                     }),
+                    SiteKind::Bezier { .. } | SiteKind::Bspline { .. }
+                        if spline_site(kind, scale, spacing).is_some_and(|c| c.closed) =>
+                    {
+                        g.masks.push(Mask::Polygon {
+                            region: Region::new(boundary_segments(kind, 0.0, spacing, scale)),
+                        });
+                    }
                     _ => {}
                 }
             }
@@ -323,6 +340,25 @@ impl Gens {
         let e = self.push(f, site, Some((2, 0)), true);
         let t1 = tangent(start + sweep);
         self.set_ends(e, [(p0, tangent(start), c0), (p1, t1 * -1.0, c1)]);
+    }
+
+    /// A free-form curve's corners and pieces (SCENE_FORMAT.md numbering): piece `k`
+    /// runs from corner `k` to the next corner (wrapping on a closed curve).
+    fn add_spline(&mut self, site: usize, spline: SplineSite) {
+        let corners: Vec<usize> = spline
+            .corners
+            .iter()
+            .enumerate()
+            .map(|(k, &p)| self.push(Field::Euclid { p }, site, Some((0, k)), false))
+            .collect();
+        let n = corners.len();
+        for (k, piece) in spline.pieces.into_iter().enumerate() {
+            let [(p0, t0), (p1, t1)] = piece.ends();
+            let e = self.push(Field::Pieces(vec![piece]), site, Some((2, k)), true);
+            if n > 0 {
+                self.set_ends(e, [(p0, t0, corners[k]), (p1, t1, corners[(k + 1) % n])]);
+            }
+        }
     }
 
     fn set_ends(&mut self, e: usize, ends: [(Point, Point, usize); 2]) {

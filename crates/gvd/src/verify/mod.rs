@@ -49,6 +49,7 @@ mod curve;
 mod field;
 mod generators;
 mod nearest;
+mod parametric;
 mod region;
 mod report;
 mod soundness;

@@ -8,7 +8,11 @@
 //!   the nearest-site search masks it, and an edge sample inside counts its depth;
 //! * in `medial_axis` mode the diagram lives in the even-odd interior of all closed
 //!   sites plus the chains of open sites whose ends join up into loops.
+//!
+//! Closed free-form curves bound regions as polygons do.
 
+use super::parametric::spline_site;
+use crate::geom::bspline::RationalBspline;
 use crate::geom::{segment_distance, Point};
 use crate::scene::{Scene, SiteKind};
 use std::f64::consts::TAU;
@@ -89,6 +93,34 @@ fn open_ends(site: &SiteKind) -> Option<(Point, Point)> {
             let at = |a: f64| *center + Point::new(a.cos(), a.sin()) * *radius;
             Some((at(*start_angle), at(start_angle + sweep)))
         }
+        SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => {
+            let ends = |c: &RationalBspline| {
+                let (lo, hi) = c.domain();
+                (c.eval(lo), c.eval(hi))
+            };
+            match site {
+                SiteKind::Bezier {
+                    control_points,
+                    weights,
+                } => Some(ends(&RationalBspline::bezier(
+                    control_points,
+                    weights.as_deref(),
+                ))),
+                SiteKind::Bspline {
+                    degree,
+                    control_points,
+                    knots,
+                    weights,
+                    closed: false,
+                } => Some(ends(&RationalBspline::new(
+                    *degree,
+                    control_points,
+                    knots,
+                    weights.as_deref(),
+                ))),
+                _ => None,
+            }
+        }
         _ => None,
     }
 }
@@ -130,8 +162,26 @@ pub(super) fn closed_chains(scene: &Scene) -> Vec<usize> {
 }
 
 /// The boundary segments of a site that bounds or closes a region: a polygon's rings,
-/// a polyline's or segment's pieces, an arc as chords of sagitta at most `sagitta`.
-pub(super) fn boundary_segments(site: &SiteKind, sagitta: f64) -> Vec<(Point, Point)> {
+/// a polyline's or segment's pieces, an arc as chords of sagitta at most `sagitta`, a
+/// free-form curve as chords at most `spacing` long (`scale`: the scene's size).
+pub(super) fn boundary_segments(
+    site: &SiteKind,
+    sagitta: f64,
+    spacing: f64,
+    scale: f64,
+) -> Vec<(Point, Point)> {
+    if let Some(spline) = spline_site(site, scale, spacing) {
+        return spline
+            .pieces
+            .iter()
+            .flat_map(|p| {
+                let line = p.outline(spacing);
+                (1..line.len())
+                    .map(move |k| (line[k - 1], line[k]))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+    }
     match site {
         SiteKind::Polygon { rings } => super::field::ring_segments(rings),
         SiteKind::Polyline { points } => points.windows(2).map(|w| (w[0], w[1])).collect(),
@@ -156,18 +206,28 @@ pub(super) fn boundary_segments(site: &SiteKind, sagitta: f64) -> Vec<(Point, Po
     }
 }
 
-/// The `medial_axis` region of a scene: the even-odd interior of its polygons and of
-/// the chains of open sites that close up.
+/// The `medial_axis` region of a scene: the even-odd interior of its polygons, closed
+/// free-form curves and the chains of open sites that close up.
 pub(super) fn medial_region(scene: &Scene) -> Region {
-    let sagitta = 1e-3 * scene.epsilon();
+    let (sagitta, spacing) = (1e-3 * scene.epsilon(), 0.25 * scene.epsilon());
+    let scale = scene.domain().longest_side();
+    let bounds = |s: &SiteKind| {
+        matches!(s, SiteKind::Polygon { .. })
+            || spline_site(s, scale, spacing).is_some_and(|c| c.closed)
+    };
     let mut segs = Vec::new();
     for s in scene.sites() {
-        if matches!(s.kind, SiteKind::Polygon { .. }) {
-            segs.extend(boundary_segments(&s.kind, sagitta));
+        if bounds(&s.kind) {
+            segs.extend(boundary_segments(&s.kind, sagitta, spacing, scale));
         }
     }
     for i in closed_chains(scene) {
-        segs.extend(boundary_segments(&scene.sites()[i].kind, sagitta));
+        segs.extend(boundary_segments(
+            &scene.sites()[i].kind,
+            sagitta,
+            spacing,
+            scale,
+        ));
     }
     Region::new(segs)
 }

@@ -310,20 +310,51 @@ fn implicit_field_and_segments() {
 }
 
 #[test]
+fn free_form_curves_are_checked_by_their_own_distance() {
+    // two Béziers, a straight one and a parabola, checked against the diagram of the
+    // same curves as a segment and a polyline, then against that diagram with its
+    // edge moved off the bisector
+    let line = [Point::new(-0.6, -0.5), Point::new(0.6, -0.5)];
+    let arch = [
+        Point::new(-0.6, 0.2),
+        Point::new(0.0, 0.8),
+        Point::new(0.6, 0.2),
+    ];
+    let curves = scene(vec![
+        SiteKind::Bezier {
+            control_points: line.to_vec(),
+            weights: None,
+        },
+        SiteKind::Bezier {
+            control_points: arch.to_vec(),
+            weights: None,
+        },
+    ]);
+    let parabola: Vec<Point> = (0..=400)
+        .map(|k| crate::geom::bspline::RationalBspline::bezier(&arch, None).eval(k as f64 / 400.0))
+        .collect();
+    let drawn = scene(vec![
+        SiteKind::Segment {
+            from: line[0],
+            to: line[1],
+        },
+        SiteKind::Polyline { points: parabola },
+    ]);
+    let d = crate::compute(&drawn, &crate::Options::default()).unwrap();
+    let r = check(&curves, &d);
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+    let mut moved = d.clone();
+    for e in &mut moved.edges {
+        for p in &mut e.points {
+            p.y += 0.05;
+        }
+    }
+    assert!(!check(&curves, &moved).passed);
+}
+
+#[test]
 fn unsupported_kinds_and_modes_are_refused() {
-    let s = scene(vec![SiteKind::Bezier {
-        control_points: vec![
-            Point::new(0.0, 0.0),
-            Point::new(0.5, 0.5),
-            Point::new(1.0, 0.0),
-        ],
-        weights: None,
-    }]);
     let d = VoronoiComplex::default();
-    assert!(matches!(
-        verify(&s, &d, &VerifyOptions::default()),
-        Err(Error::Unsupported { site: 0, .. })
-    ));
     let s = scene(vec![SiteKind::Ellipse {
         center: Point::default(),
         semi_axes: [0.5, 0.25],

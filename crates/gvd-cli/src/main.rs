@@ -4,6 +4,7 @@ mod bench;
 mod bench_implicit;
 mod formats;
 mod output;
+mod progress;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
@@ -102,6 +103,8 @@ struct ComputeArgs {
     /// Soft-predicate engine: no two-edge filter in C1 (Yap et al. ¶25(a)).
     #[arg(long)]
     no_two_edge_filter: bool,
+    #[command(flatten)]
+    run: progress::RunArgs,
 }
 
 #[derive(Args)]
@@ -130,6 +133,8 @@ struct OffsetArgs {
     /// Write a picture here (SVG): sites, faint diagram edges, offset curves.
     #[arg(long)]
     svg: Option<PathBuf>,
+    #[command(flatten)]
+    run: progress::RunArgs,
 }
 
 #[derive(Args)]
@@ -222,6 +227,7 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
             .context("cannot start the worker threads")?;
     }
     let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
+    let (control, bar) = args.run.control();
     let options = gvd::Options {
         engine: args.engine.into(),
         parallel: args.threads != Some(1),
@@ -241,9 +247,11 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
         incremental: gvd::IncrementalOptions {
             bisectors: args.bisectors,
         },
+        control,
     };
-    let out = gvd::compute_with_boxes(&sc, &options)
-        .with_context(|| format!("{}", args.scene.display()))?;
+    let out = gvd::compute_with_boxes(&sc, &options);
+    progress::finish(bar);
+    let out = out.with_context(|| format!("{}", args.scene.display()))?;
     let d = &out.complex;
     let seconds = d.stats.get("seconds").and_then(|v| v.as_f64());
     eprintln!(
@@ -300,8 +308,14 @@ fn offset(args: OffsetArgs) -> Result<ExitCode> {
     )?;
     gvd::offset::check_distance(args.distance)?;
     let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
-    let (off, diagram) = gvd::offset::offset_scene(&sc, args.distance, &Default::default())
-        .with_context(|| format!("{}", args.scene.display()))?;
+    let (control, bar) = args.run.control();
+    let options = gvd::Options {
+        control,
+        ..Default::default()
+    };
+    let off = gvd::offset::offset_scene(&sc, args.distance, &options);
+    progress::finish(bar);
+    let (off, diagram) = off.with_context(|| format!("{}", args.scene.display()))?;
     eprintln!(
         "{}: offset at {}: {} curves ({} closed), {} primitives in {:.3} s",
         args.scene.display(),

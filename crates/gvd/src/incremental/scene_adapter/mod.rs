@@ -27,6 +27,7 @@ use super::segments_arcs::{
     NEAR_TOUCH,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
+use crate::control::Watch;
 use crate::geom::arc::{partial_sweep, ray_crosses_odd};
 use crate::geom::grid::SparseGrid;
 use crate::geom::ring::even_odd_contains;
@@ -625,10 +626,14 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
 
 /// The diagram of a scene of Euclidean points, segments, arcs, polylines and polygons;
 /// with `bisectors`, every edge also carries its exact bisector in offset-parameter
-/// form ([`Edge::bisector`]).
-pub fn scene_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, Error> {
+/// form ([`Edge::bisector`]). `watch` stops the construction early.
+pub fn scene_voronoi(
+    scene: &Scene,
+    bisectors: bool,
+    watch: &Watch,
+) -> Result<VoronoiComplex, Error> {
     if let Some(s) = scene.unit_scale() {
-        let mut c = scene_voronoi(&scene.scaled(s), bisectors)?;
+        let mut c = scene_voronoi(&scene.scaled(s), bisectors, watch)?;
         c.scale(1.0 / s);
         return Ok(c);
     }
@@ -652,7 +657,7 @@ pub fn scene_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, E
         return Err(arc_conflict_error(&g, c));
     }
     phases.end("input");
-    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain())?;
+    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain(), watch)?;
     phases.end("construction");
     let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases)?;
     phases.end("assembly");

@@ -29,6 +29,7 @@ pub(crate) use crossings::{find_conflict, Conflict, NEAR_TOUCH};
 pub(crate) use geometry::Gen;
 
 use super::points::PointDiagram;
+use crate::control::Watch;
 use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range};
 use crate::Error;
@@ -77,17 +78,19 @@ pub(crate) struct RawVertex {
 
 impl SegmentDiagram {
     /// The diagram of the distinct `points` and the `segments` between them (pairs of
-    /// point indices). The caller has checked that the segments do not cross.
+    /// point indices). The caller has checked that the segments do not cross. `watch`
+    /// stops the construction early (checked per inserted site).
     pub(crate) fn new(
         points: &[Point],
         segments: &[[u32; 2]],
         arcs: &[ArcSpec],
         domain: Aabb,
+        watch: &Watch,
     ) -> Result<SegmentDiagram, Error> {
         let n = points.len();
         let mut with_frame = points.to_vec();
         with_frame.extend(frame(points, arcs, domain));
-        let pd = PointDiagram::new(&with_frame, domain)?;
+        let pd = PointDiagram::watched(&with_frame, domain, watch)?;
         let mut graph = Graph::from_points(&pd);
         let mut face_of_point = vec![0u32; with_frame.len()];
         let mut point_id = vec![u32::MAX; pd.pts.len()];
@@ -122,7 +125,14 @@ impl SegmentDiagram {
             .collect();
         let mut faces_at_point: Vec<Vec<u32>> = vec![Vec::new(); pd.pts.len()];
         let mut scratch = Scratch::default();
+        watch.stage(
+            "segments and arcs",
+            Some((lines.len() + arc_gens.len()) as u64),
+        );
         for k in insertion_order(&lines, &arc_gens) {
+            if !watch.tick(1) {
+                watch.check()?;
+            }
             let sites = Sites {
                 points: &pd.pts,
                 lines: &lines,

@@ -70,6 +70,14 @@ pub fn compute_with(
             message: "the freeform engine computes bezier and bspline curves only (so far)".into(),
         });
     }
+    if let Some(s) = scene.unit_scale() {
+        // far from unit size, squared distances overflow or underflow: compute at an
+        // exact power-of-two scale and scale back
+        let mut c = compute_with(&scene.scaled(s), constraints, watch)?;
+        c.scale(1.0 / s);
+        c.stats.insert("rescaled_by".into(), serde_json::json!(s));
+        return Ok(c);
+    }
     let pieces = pieces::pieces(scene);
     if pieces.spans.is_empty() {
         return Err(Error::scene("sites", "no free-form curve to compute"));
@@ -86,6 +94,7 @@ pub fn compute_with(
         constraints,
         samples: std::cell::Cell::new(0),
         max_samples: MAX_SAMPLES,
+        watch: watch.clone(),
     };
     let pairs = candidates::pairs(&features, &domain);
     let mut runs: Vec<Run> = Vec::new();
@@ -163,6 +172,7 @@ pub fn compute_with(
             }
         }
     }
+    watch.check()?;
     if trimmer.samples.get() >= MAX_SAMPLES {
         return Err(Error::Budget {
             what: "points".into(),

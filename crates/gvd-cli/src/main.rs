@@ -77,7 +77,8 @@ struct ComputeArgs {
     /// Most boxes the subdivision engine may visit (default: 2097152 + 64 per site).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     max_boxes: Option<u64>,
-    /// Most polyline points the subdivision engine may write (default: 524288 + 256
+    /// Most polyline points the subdivision engine (and the incremental engine on
+    /// curved edges) may write (default: 524288 + 256
     /// per site).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     max_points: Option<u64>,

@@ -135,7 +135,12 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         }
         (Engine::Auto | Engine::Incremental, None) if incremental::supports(scene) => {
             return timed_incremental(|| {
-                incremental::scene_voronoi(scene, options.incremental.bisectors, &watch)
+                incremental::scene_voronoi(
+                    scene,
+                    options.incremental.bisectors,
+                    &options.subdivision.limits,
+                    &watch,
+                )
             });
         }
         (Engine::Incremental, None) => {

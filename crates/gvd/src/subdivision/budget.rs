@@ -27,7 +27,8 @@ pub const POINTS_PER_SITE: usize = 256;
 pub struct Limits {
     /// Boxes the subdivision and the leaves' local splits may visit.
     pub max_boxes: Option<usize>,
-    /// Points the traced bisector polylines may hold in all.
+    /// Points the traced bisector polylines may hold in all (subdivision engines; the
+    /// curved edges of the incremental engine).
     pub max_points: Option<usize>,
 }
 
@@ -99,6 +100,24 @@ impl Budget {
     /// Takes one output point; `false` once the points have run out.
     pub fn take_point(&self) -> bool {
         self.watch.tick(0) && Self::take(&self.points, self.max_points, &self.out_of_points)
+    }
+
+    /// Takes `n` output points at once (a polyline drawn whole); `false` once the
+    /// points have run out.
+    pub fn take_points(&self, n: usize) -> bool {
+        if !self.watch.tick(0) || self.out_of_points.load(Relaxed) {
+            return false;
+        }
+        if self.points.fetch_add(n, Relaxed).saturating_add(n) > self.max_points {
+            self.out_of_points.store(true, Relaxed);
+            return false;
+        }
+        true
+    }
+
+    /// The run's watch.
+    pub fn watch(&self) -> &Watch {
+        &self.watch
     }
 
     /// Whether either limit was reached or the run was stopped (its work is then

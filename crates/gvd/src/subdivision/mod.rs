@@ -18,7 +18,7 @@ use crate::error::Error;
 use crate::geom::Aabb;
 use crate::scene::Scene;
 use crate::site::{DistanceField, FieldOptions, SiteField};
-use budget::Budget;
+pub(crate) use budget::Budget;
 pub use budget::Limits;
 use resolve::{LeafOutput, Port, PortId, Resolver, Tolerances};
 use serde_json::json;

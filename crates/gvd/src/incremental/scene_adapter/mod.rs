@@ -33,6 +33,7 @@ use crate::geom::grid::SparseGrid;
 use crate::geom::ring::even_odd_contains;
 use crate::geom::Point;
 use crate::scene::{Metric, Mode, Scene, SiteKind};
+use crate::subdivision::{Budget, Limits};
 use crate::Error;
 use assembly::{assemble, Stretch};
 use phases::Phases;
@@ -626,14 +627,16 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
 
 /// The diagram of a scene of Euclidean points, segments, arcs, polylines and polygons;
 /// with `bisectors`, every edge also carries its exact bisector in offset-parameter
-/// form ([`Edge::bisector`]). `watch` stops the construction early.
+/// form ([`Edge::bisector`]). `watch` stops the construction early; the polylines
+/// drawn hold at most the points `limits` allow ([`Error::Budget`] beyond).
 pub fn scene_voronoi(
     scene: &Scene,
     bisectors: bool,
+    limits: &Limits,
     watch: &Watch,
 ) -> Result<VoronoiComplex, Error> {
     if let Some(s) = scene.unit_scale() {
-        let mut c = scene_voronoi(&scene.scaled(s), bisectors, watch)?;
+        let mut c = scene_voronoi(&scene.scaled(s), bisectors, limits, watch)?;
         c.scale(1.0 / s);
         return Ok(c);
     }
@@ -657,9 +660,11 @@ pub fn scene_voronoi(
         return Err(arc_conflict_error(&g, c));
     }
     phases.end("input");
-    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain(), watch)?;
+    let budget = Budget::new(limits, scene.sites().len(), watch);
+    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain(), budget)?;
     phases.end("construction");
     let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases)?;
+    diagram.budget.check(scene.epsilon())?;
     phases.end("assembly");
     complex.stats.insert(
         "topology_overrides".into(),

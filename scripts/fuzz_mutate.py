@@ -18,7 +18,9 @@ classified:
                            [--keep DIR]
 
 Hangs and crashes are written to --keep (default: a temporary folder, printed) as
-reproducers with the command line. Exit 1 when any run hung or crashed.
+reproducers with the command line, and so are the diagrams on which `gvd verify` hung
+or crashed. Exit 1 when any compute run hung or crashed, or verify crashed (a slow
+verify is reported, not failed: it is bounded by its sample cap, docs/FUZZING.md).
 """
 
 import argparse
@@ -179,9 +181,15 @@ def run_one(gvd, work, text, opts, timeout):
     if len(err) > MAX_MESSAGE:
         return "crash", dt, f"a message of {len(err)} characters", cmd
     if p.returncode == 0 and wrote:
-        v = subprocess.run([gvd, "verify", scene, out, "--grid", "64"], capture_output=True,
-                           timeout=2 * timeout + 5, stdin=subprocess.DEVNULL)
+        try:
+            v = subprocess.run([gvd, "verify", scene, out, "--grid", "64"], capture_output=True,
+                               timeout=2 * timeout + 5, stdin=subprocess.DEVNULL,
+                               preexec_fn=limit_memory)
+        except subprocess.TimeoutExpired:
+            return "result", dt, "VERIFY-HANG: gvd verify killed at the wall-clock limit", cmd
         last = v.stdout.decode(errors="replace").strip().splitlines()[-1:] or [""]
+        if v.returncode not in (0, 1, 2) or "panicked" in v.stderr.decode(errors="replace"):
+            return "result", dt, f"VERIFY-CRASH: exit {v.returncode}", cmd
         return "result", dt, last[0][:120], cmd
     if p.returncode == 2 and not wrote and err.strip():
         return "refusal", dt, err.strip()[:160], cmd
@@ -203,7 +211,7 @@ def main():
     keep = a.keep or tempfile.mkdtemp(prefix="gvd-fuzz-found-")
     os.makedirs(keep, exist_ok=True)
     counts = {"refusal": 0, "result": 0, "hang": 0, "crash": 0}
-    verify_fail = 0
+    verify_fail = verify_bad = verify_crash = 0
     slowest = (0.0, "")
     start = time.time()
     n = 0
@@ -225,6 +233,16 @@ def main():
         counts[kind] += 1
         if kind == "result" and "FAIL" in msg:
             verify_fail += 1
+        if kind == "result" and msg.startswith("VERIFY-CRASH"):
+            verify_crash += 1
+        if kind == "result" and msg.startswith("VERIFY-"):
+            # gvd verify hung or crashed on a diagram gvd compute wrote: kept, and a failure
+            verify_bad += 1
+            with open(os.path.join(keep, f"verify-{verify_bad:03}.json"), "w") as f:
+                f.write(text)
+            with open(os.path.join(keep, f"verify-{verify_bad:03}.txt"), "w") as f:
+                f.write(f"from {name}\n{' '.join(cmd[2:])}\n{msg}\n")
+            print(f"{msg.split(':')[0]} from {name} {' '.join(opts)}", flush=True)
         if dt > slowest[0]:
             slowest = (dt, name)
         if kind in ("hang", "crash"):
@@ -237,8 +255,8 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     print(f"{n} runs in {time.time() - start:.0f} s from {len(base)} scenes (seed {a.seed}): "
           + ", ".join(f"{c} {k}" for k, c in counts.items())
-          + f"; {verify_fail} results failed gvd verify; slowest {slowest[0]:.1f} s ({slowest[1]})")
-    if counts["hang"] or counts["crash"]:
+          + f"; {verify_fail} results failed gvd verify, {verify_bad} hung or crashed it; slowest {slowest[0]:.1f} s ({slowest[1]})")
+    if counts["hang"] or counts["crash"] or verify_crash:
         print(f"reproducers in {keep}")
         return 1
     if not a.keep:

@@ -216,7 +216,11 @@ fn exercise(scene: &Scene, rng: &mut Rng) {
         slack: [1.0, 1e-300, 1e300, f64::NAN][rng.below(4)],
         ..Default::default()
     };
-    let _ = timed("verify", Some(scene), || verify(scene, &d, &vo));
+    // verify samples curved edges every epsilon/2 up to a cap: some seconds at a
+    // relative epsilon of 1e-6 (docs/FUZZING.md), too slow for this loop
+    if scene.epsilon() >= 1e-4 * scene.domain().longest_side() {
+        let _ = timed("verify", Some(scene), || verify(scene, &d, &vo));
+    }
     let distance = [0.1, 1e-300, 1e300, 0.0, -1.0, f64::NAN, 0.5][rng.below(7)];
     let _ = timed("offset", Some(scene), || offset(scene, &d, distance));
 }

@@ -5,6 +5,7 @@ mod bench_algebraic;
 mod bench_implicit;
 mod formats;
 mod output;
+mod progress;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
@@ -77,7 +78,8 @@ struct ComputeArgs {
     /// Most boxes the subdivision engine may visit (default: 2097152 + 64 per site).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     max_boxes: Option<u64>,
-    /// Most polyline points the subdivision engine may write (default: 524288 + 256
+    /// Most polyline points the subdivision engine (and the incremental engine on
+    /// curved edges) may write (default: 524288 + 256
     /// per site).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     max_points: Option<u64>,
@@ -103,6 +105,8 @@ struct ComputeArgs {
     /// Soft-predicate engine: no two-edge filter in C1 (Yap et al. ¶25(a)).
     #[arg(long)]
     no_two_edge_filter: bool,
+    #[command(flatten)]
+    run: progress::RunArgs,
 }
 
 #[derive(Args)]
@@ -131,6 +135,8 @@ struct OffsetArgs {
     /// Write a picture here (SVG): sites, faint diagram edges, offset curves.
     #[arg(long)]
     svg: Option<PathBuf>,
+    #[command(flatten)]
+    run: progress::RunArgs,
 }
 
 #[derive(Args)]
@@ -224,6 +230,7 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
             .context("cannot start the worker threads")?;
     }
     let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
+    let (control, bar) = args.run.control();
     let options = gvd::Options {
         engine: args.engine.into(),
         parallel: args.threads != Some(1),
@@ -243,9 +250,11 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
         incremental: gvd::IncrementalOptions {
             bisectors: args.bisectors,
         },
+        control,
     };
-    let out = gvd::compute_with_boxes(&sc, &options)
-        .with_context(|| format!("{}", args.scene.display()))?;
+    let out = gvd::compute_with_boxes(&sc, &options);
+    progress::finish(bar);
+    let out = out.with_context(|| format!("{}", args.scene.display()))?;
     let d = &out.complex;
     let seconds = d.stats.get("seconds").and_then(|v| v.as_f64());
     eprintln!(
@@ -302,8 +311,14 @@ fn offset(args: OffsetArgs) -> Result<ExitCode> {
     )?;
     gvd::offset::check_distance(args.distance)?;
     let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
-    let (off, diagram) = gvd::offset::offset_scene(&sc, args.distance, &Default::default())
-        .with_context(|| format!("{}", args.scene.display()))?;
+    let (control, bar) = args.run.control();
+    let options = gvd::Options {
+        control,
+        ..Default::default()
+    };
+    let off = gvd::offset::offset_scene(&sc, args.distance, &options);
+    progress::finish(bar);
+    let (off, diagram) = off.with_context(|| format!("{}", args.scene.display()))?;
     eprintln!(
         "{}: offset at {}: {} curves ({} closed), {} primitives in {:.3} s",
         args.scene.display(),

@@ -42,6 +42,7 @@ fn build(py: Python<'_>, err: &gvd::Error) -> PyResult<PyErr> {
         }
         gvd::Error::Diagram(_) => "DiagramError",
         gvd::Error::Internal(_) => "InternalError",
+        gvd::Error::Cancelled => "Error",
     };
     kwargs.set_item("reason", err.message())?;
     let class = py.import("gvd.errors")?.getattr(class)?;

@@ -64,6 +64,7 @@ fn compute(
             ..Default::default()
         },
         incremental: gvd::IncrementalOptions { bisectors },
+        ..Default::default()
     };
     let scene = scene.scene()?;
     let complex = py

@@ -2,6 +2,7 @@
 
 use crate::complex::cells;
 use crate::complex::VoronoiComplex;
+use crate::control::{Control, Watch};
 use crate::error::Error;
 use crate::geom::Aabb;
 use crate::geom::{Point, PointGrid};
@@ -40,6 +41,9 @@ pub struct Options {
     pub subdivision: SubdivisionOptions,
     /// Knobs of the incremental engine.
     pub incremental: IncrementalOptions,
+    /// Stopping and watching the run from outside: a cancel flag, a time limit, a
+    /// progress callback (none by default). Every engine heeds it.
+    pub control: Control,
 }
 
 /// Knobs of the subdivision engine (EMM13).
@@ -74,6 +78,7 @@ impl Default for Options {
             parallel: cfg!(feature = "parallel"),
             subdivision: SubdivisionOptions::default(),
             incremental: IncrementalOptions::default(),
+            control: Control::default(),
         }
     }
 }
@@ -94,11 +99,12 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 
 /// [`compute`], also returning the subdivision's leaves (none for the incremental engine).
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
+    let watch = Watch::start(&options.control)?;
     check_medial_axis(scene)?;
     if options.engine == Engine::Freeform
         || (options.engine == Engine::Auto && crate::freeform::supports(scene))
     {
-        let complex = crate::freeform::compute(scene)?;
+        let complex = crate::freeform::compute(scene, &watch)?;
         return Ok(Computation {
             complex,
             boxes: Vec::new(),
@@ -108,7 +114,7 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {
             return timed_incremental(|| {
-                let diagram = incremental::PointDiagram::new(&points, scene.domain())?;
+                let diagram = incremental::PointDiagram::watched(&points, scene.domain(), &watch)?;
                 let (mut complex, traced) = diagram.to_complex_with_cells();
                 drop(diagram);
                 if !traced {
@@ -129,7 +135,12 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         }
         (Engine::Auto | Engine::Incremental, None) if incremental::supports(scene) => {
             return timed_incremental(|| {
-                incremental::scene_voronoi(scene, options.incremental.bisectors)
+                incremental::scene_voronoi(
+                    scene,
+                    options.incremental.bisectors,
+                    &options.subdivision.limits,
+                    &watch,
+                )
             });
         }
         (Engine::Incremental, None) => {
@@ -154,6 +165,7 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
             scene,
             &options.subdivision.soft,
             &options.subdivision.limits,
+            &watch,
         )?;
         return Ok(Computation {
             complex: out.complex,
@@ -179,7 +191,7 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         options.parallel,
         options.subdivision.limits,
     );
-    let out = subdivision::run_scene(scene, &options.subdivision.fields, &params)?;
+    let out = subdivision::run_scene(scene, &options.subdivision.fields, &params, &watch)?;
     Ok(Computation {
         complex: out.complex,
         boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),

@@ -70,6 +70,10 @@ pub enum Error {
         /// What happened and which option raises the limit.
         message: String,
     },
+    /// The run was stopped by its cancel flag ([`crate::Control::cancel`]) before it
+    /// ended.
+    #[error("cancelled: the run was stopped by its cancel flag before it ended")]
+    Cancelled,
 }
 
 impl Error {
@@ -103,6 +107,7 @@ impl Error {
             | Error::Conflict { message, .. }
             | Error::InvalidOption { message, .. }
             | Error::Budget { message, .. } => message,
+            Error::Cancelled => "cancelled",
         }
     }
     pub(crate) fn site(site: usize, field: &str, message: impl Into<String>) -> Self {

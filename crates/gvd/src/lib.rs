@@ -35,6 +35,7 @@
 mod clearance;
 pub mod complex;
 mod compute;
+mod control;
 mod error;
 mod freeform;
 pub mod geom;
@@ -53,6 +54,7 @@ pub use compute::{
     compute, compute_with_boxes, Computation, Engine, IncrementalOptions, Options,
     SubdivisionOptions,
 };
+pub use control::{Control, Progress, ProgressFn};
 pub use error::Error;
 pub use geom::{Aabb, Point};
 pub use offset::{offset, offset_scene, Offset};

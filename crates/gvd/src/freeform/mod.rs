@@ -25,6 +25,7 @@ mod trim;
 
 use crate::complex::cells;
 use crate::complex::VoronoiComplex;
+use crate::control::Watch;
 use crate::error::Error;
 use crate::geom::Point;
 use crate::scene::{Scene, SiteKind};
@@ -45,12 +46,17 @@ pub fn supports(scene: &Scene) -> bool {
 const MAX_SAMPLES: usize = 4_000_000;
 
 /// The Voronoi diagram of a scene of free-form curves.
-pub fn compute(scene: &Scene) -> Result<VoronoiComplex, Error> {
-    compute_with(scene, Constraints::default())
+pub fn compute(scene: &Scene, watch: &Watch) -> Result<VoronoiComplex, Error> {
+    compute_with(scene, Constraints::default(), watch)
 }
 
-/// [`compute`] with some trimming constraints switched off (for tests).
-pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiComplex, Error> {
+/// [`compute`] with some trimming constraints switched off (for tests); `watch` stops
+/// the run early (checked per pair of pieces).
+pub fn compute_with(
+    scene: &Scene,
+    constraints: Constraints,
+    watch: &Watch,
+) -> Result<VoronoiComplex, Error> {
     let start = std::time::Instant::now();
     if let Some((i, s)) = scene
         .sites()
@@ -63,6 +69,14 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
             kind: s.kind.name().to_string(),
             message: "the freeform engine computes bezier and bspline curves only (so far)".into(),
         });
+    }
+    if let Some(s) = scene.unit_scale() {
+        // far from unit size, squared distances overflow or underflow: compute at an
+        // exact power-of-two scale and scale back
+        let mut c = compute_with(&scene.scaled(s), constraints, watch)?;
+        c.scale(1.0 / s);
+        c.stats.insert("rescaled_by".into(), serde_json::json!(s));
+        return Ok(c);
     }
     let pieces = pieces::pieces(scene);
     if pieces.spans.is_empty() {
@@ -80,6 +94,7 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
         constraints,
         samples: std::cell::Cell::new(0),
         max_samples: MAX_SAMPLES,
+        watch: watch.clone(),
     };
     let pairs = candidates::pairs(&features, &domain);
     let mut runs: Vec<Run> = Vec::new();
@@ -87,7 +102,10 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
     let mut branches = 0usize;
     let mut trace_seconds = 0.0;
     let forms = &features.forms;
+    watch.stage("pairs", Some(pairs.len() as u64));
     for &[f, g] in &pairs {
+        watch.tick(1);
+        watch.check()?;
         match (f, g) {
             (Feature::Span(a), Feature::Span(b)) => {
                 let (ca, cb) = (&pieces.spans[a].curve, &pieces.spans[b].curve);
@@ -154,6 +172,7 @@ pub fn compute_with(scene: &Scene, constraints: Constraints) -> Result<VoronoiCo
             }
         }
     }
+    watch.check()?;
     if trimmer.samples.get() >= MAX_SAMPLES {
         return Err(Error::Budget {
             what: "points".into(),
@@ -244,6 +263,9 @@ mod tests {
     #[test]
     fn the_lower_envelope_leaves_only_nearest_points() {
         let sc = scene("freeform-nonconvex2-voronoi.json");
-        assert_eq!(faults(&sc, &compute(&sc).unwrap()), (0, 0));
+        assert_eq!(
+            faults(&sc, &compute(&sc, &Watch::default()).unwrap()),
+            (0, 0)
+        );
     }
 }

@@ -11,6 +11,7 @@
 use super::bisector::side_and_curvature;
 use super::nearest::Features;
 use super::pieces::Feature;
+use crate::control::Watch;
 use crate::geom::{segment_distance, Aabb, Point};
 
 /// A point of a bisector branch: where it is, its clearance, and the foot parameters on
@@ -84,6 +85,8 @@ pub struct Trimmer<'a> {
     pub samples: std::cell::Cell<usize>,
     /// Most samples allowed.
     pub max_samples: usize,
+    /// The run's watch: a cancelled or timed-out run samples no more.
+    pub watch: Watch,
 }
 
 /// Which trimming constraints apply.
@@ -157,7 +160,7 @@ impl Trimmer<'_> {
     }
 
     fn exhausted(&self) -> bool {
-        self.samples.get() >= self.max_samples
+        self.samples.get() >= self.max_samples || !self.watch.tick(0)
     }
 
     /// Samples strictly between `a` and `b` (in order), refined until valid stretches

@@ -38,9 +38,11 @@ impl Scene {
                 }
                 SiteKind::Polyline { points } => points.iter().copied().for_each(&mut see),
                 SiteKind::Polygon { rings } => rings.iter().flatten().copied().for_each(&mut see),
+                SiteKind::Bezier { control_points, .. }
+                | SiteKind::Bspline { control_points, .. } => {
+                    control_points.iter().copied().for_each(&mut see)
+                }
                 SiteKind::Algebraic { .. }
-                | SiteKind::Bezier { .. }
-                | SiteKind::Bspline { .. }
                 | SiteKind::Field { .. }
                 | SiteKind::ImplicitField { .. } => {}
             }
@@ -96,9 +98,11 @@ impl Scene {
                 }
                 SiteKind::Polyline { points } => points.iter_mut().for_each(|q| *q = p(q)),
                 SiteKind::Polygon { rings } => rings.iter_mut().flatten().for_each(|q| *q = p(q)),
+                SiteKind::Bezier { control_points, .. }
+                | SiteKind::Bspline { control_points, .. } => {
+                    control_points.iter_mut().for_each(|q| *q = p(q))
+                }
                 SiteKind::Algebraic { .. }
-                | SiteKind::Bezier { .. }
-                | SiteKind::Bspline { .. }
                 | SiteKind::Field { .. }
                 | SiteKind::ImplicitField { .. } => {}
             }
@@ -109,10 +113,11 @@ impl Scene {
 
 impl SiteKind {
     /// The degree of the site's field as a function of lengths: 1 for distances
-    /// (Euclidean points, circles, ellipses, segments, arcs, polylines, polygons), 2 for
-    /// the quadratic metrics (anisotropic, power, Möbius, whose weights scale with
-    /// them), `p` for lp; `None` for sites given by equations and free-form curves,
-    /// which [`Scene::scaled`] does not scale.
+    /// (Euclidean points, circles, ellipses, segments, arcs, polylines, polygons,
+    /// free-form curves: their control points scale, their weights and knots do not),
+    /// 2 for the quadratic metrics (anisotropic, power, Möbius, whose weights scale
+    /// with them), `p` for lp; `None` for sites given by equations, which
+    /// [`Scene::scaled`] does not scale.
     pub fn field_degree(&self) -> Option<u32> {
         match self {
             SiteKind::Point { metric, .. } => Some(match metric {
@@ -125,10 +130,10 @@ impl SiteKind {
             | SiteKind::Segment { .. }
             | SiteKind::Arc { .. }
             | SiteKind::Polyline { .. }
-            | SiteKind::Polygon { .. } => Some(1),
-            SiteKind::Algebraic { .. }
+            | SiteKind::Polygon { .. }
             | SiteKind::Bezier { .. }
-            | SiteKind::Bspline { .. }
+            | SiteKind::Bspline { .. } => Some(1),
+            SiteKind::Algebraic { .. }
             | SiteKind::Field { .. }
             | SiteKind::ImplicitField { .. } => None,
         }

@@ -2,8 +2,11 @@
 //! may write. A run that reaches a limit stops early and reports it as
 //! [`Error::Budget`], so that a scene finer than the limits allow (an epsilon near
 //! f64's resolution, nearly degenerate sites) ends in seconds instead of exhausting the
-//! memory. Counters are atomic: parallel subtrees draw on the same budget.
+//! memory. Counters are atomic: parallel subtrees draw on the same budget. The run's
+//! [`Watch`] is ticked with every box and point taken, so a cancel flag or a time limit
+//! stops the run as a spent budget does.
 
+use crate::control::Watch;
 use crate::error::Error;
 use crate::geom::Aabb;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
@@ -24,7 +27,8 @@ pub const POINTS_PER_SITE: usize = 256;
 pub struct Limits {
     /// Boxes the subdivision and the leaves' local splits may visit.
     pub max_boxes: Option<usize>,
-    /// Points the traced bisector polylines may hold in all.
+    /// Points the traced bisector polylines may hold in all (subdivision engines; the
+    /// curved edges of the incremental engine).
     pub max_points: Option<usize>,
 }
 
@@ -43,11 +47,12 @@ pub struct Budget {
     points: AtomicUsize,
     out_of_boxes: AtomicBool,
     out_of_points: AtomicBool,
+    watch: Watch,
 }
 
 impl Budget {
-    /// The budget of a run over `sites` sites.
-    pub fn new(limits: &Limits, sites: usize) -> Self {
+    /// The budget of a run over `sites` sites, stopped early by `watch`.
+    pub fn new(limits: &Limits, sites: usize, watch: &Watch) -> Self {
         let boxes = BASE_BOXES.saturating_add(BOXES_PER_SITE.saturating_mul(sites));
         let points = BASE_POINTS.saturating_add(POINTS_PER_SITE.saturating_mul(sites));
         Budget {
@@ -57,6 +62,7 @@ impl Budget {
             points: AtomicUsize::new(0),
             out_of_boxes: AtomicBool::new(false),
             out_of_points: AtomicBool::new(false),
+            watch: watch.clone(),
         }
     }
 
@@ -88,17 +94,36 @@ impl Budget {
 
     /// Takes one box; `false` once the boxes have run out.
     pub fn take_box(&self) -> bool {
-        Self::take(&self.boxes, self.max_boxes, &self.out_of_boxes)
+        self.watch.tick(1) && Self::take(&self.boxes, self.max_boxes, &self.out_of_boxes)
     }
 
     /// Takes one output point; `false` once the points have run out.
     pub fn take_point(&self) -> bool {
-        Self::take(&self.points, self.max_points, &self.out_of_points)
+        self.watch.tick(0) && Self::take(&self.points, self.max_points, &self.out_of_points)
     }
 
-    /// Whether either limit was reached (the run's work is then incomplete).
+    /// Takes `n` output points at once (a polyline drawn whole); `false` once the
+    /// points have run out.
+    pub fn take_points(&self, n: usize) -> bool {
+        if !self.watch.tick(0) || self.out_of_points.load(Relaxed) {
+            return false;
+        }
+        if self.points.fetch_add(n, Relaxed).saturating_add(n) > self.max_points {
+            self.out_of_points.store(true, Relaxed);
+            return false;
+        }
+        true
+    }
+
+    /// The run's watch.
+    pub fn watch(&self) -> &Watch {
+        &self.watch
+    }
+
+    /// Whether either limit was reached or the run was stopped (its work is then
+    /// incomplete).
     pub fn exhausted(&self) -> bool {
-        self.which().is_some()
+        self.which().is_some() || self.watch.stopped()
     }
 
     fn take(count: &AtomicUsize, max: usize, out: &AtomicBool) -> bool {
@@ -122,8 +147,10 @@ impl Budget {
         }
     }
 
-    /// `Ok` when no limit was reached, else the error telling which, at which epsilon.
+    /// `Ok` when no limit was reached and the run was not stopped, else the error
+    /// telling which, at which epsilon.
     pub fn check(&self, epsilon: f64) -> Result<(), Error> {
+        self.watch.check()?;
         match self.which() {
             None => Ok(()),
             Some(Exhausted::Boxes) => Err(Error::Budget {
@@ -159,7 +186,7 @@ mod tests {
             max_boxes: Some(3),
             max_points: Some(1),
         };
-        let b = Budget::new(&limits, 10);
+        let b = Budget::new(&limits, 10, &Watch::default());
         assert!((0..3).all(|_| b.take_box()));
         assert!(b.check(1e-3).is_ok());
         assert!(!b.take_box());
@@ -171,7 +198,7 @@ mod tests {
 
     #[test]
     fn a_max_box_is_refused_when_absurd_or_beyond_the_budget() {
-        let b = Budget::new(&Limits::default(), 2);
+        let b = Budget::new(&Limits::default(), 2, &Watch::default());
         let domain = Aabb::from_array([-2.0, -2.0, 2.0, 2.0]);
         assert!(b.check_max_box(0.1, &domain).is_ok());
         for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
@@ -184,7 +211,7 @@ mod tests {
 
     #[test]
     fn defaults_grow_with_the_sites() {
-        let b = Budget::new(&Limits::default(), 1000);
+        let b = Budget::new(&Limits::default(), 1000, &Watch::default());
         assert_eq!(b.max_boxes, BASE_BOXES + 64_000);
         assert_eq!(b.max_points, BASE_POINTS + 256_000);
     }

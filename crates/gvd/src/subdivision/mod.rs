@@ -13,11 +13,12 @@ mod trace;
 mod tree;
 
 use crate::complex::VoronoiComplex;
+use crate::control::Watch;
 use crate::error::Error;
 use crate::geom::Aabb;
 use crate::scene::Scene;
 use crate::site::{DistanceField, FieldOptions, SiteField};
-use budget::Budget;
+pub(crate) use budget::Budget;
 pub use budget::Limits;
 use resolve::{LeafOutput, Port, PortId, Resolver, Tolerances};
 use serde_json::json;
@@ -63,11 +64,12 @@ impl Params {
 /// beyond about `2^±200` for distances, `2^±50` for lp4) is computed at an exact
 /// power-of-two scale where its largest coordinate is about 1, and its diagram and
 /// boxes scaled back (`stats.rescaled_by` gives the factor used): the same diagram,
-/// scaled, as the scene at unit scale.
-pub fn run_scene(
+/// scaled, as the scene at unit scale. `watch` stops the run early.
+pub(crate) fn run_scene(
     scene: &Scene,
     field_options: &FieldOptions,
     params: &Params,
+    watch: &Watch,
 ) -> Result<Output, Error> {
     let rounded = round_ellipses_as_circles(scene);
     let scene = rounded.as_ref().unwrap_or(scene);
@@ -75,7 +77,7 @@ pub fn run_scene(
     let Some(s) = scene.unit_scale() else {
         check_field_range(scene)?;
         let fields = SiteField::for_scene_with(scene, field_options)?;
-        let mut out = run(&fields, params)?;
+        let mut out = run_watched(&fields, params, watch)?;
         add_curve_stats(&fields, &mut out.complex);
         return Ok(out);
     };
@@ -87,7 +89,7 @@ pub fn run_scene(
         max_box: params.max_box.map(|m| m * s),
         ..*params
     };
-    let mut out = run(&fields, &scaled_params)?;
+    let mut out = run_watched(&fields, &scaled_params, watch)?;
     out.complex.scale(1.0 / s);
     for leaf in &mut out.leaves {
         leaf.aabb = Aabb::new(leaf.aabb.min * (1.0 / s), leaf.aabb.max * (1.0 / s));
@@ -247,11 +249,21 @@ fn site_extent(kind: &crate::scene::SiteKind) -> f64 {
 /// The resolution is `params.epsilon`, floored where f64 or the box lattice cannot
 /// resolve it (see `resolution`); `stats.resolution` gives the one used.
 pub fn run<F: DistanceField>(fields: &[F], params: &Params) -> Result<Output, Error> {
+    run_watched(fields, params, &Watch::default())
+}
+
+/// [`run`], stopped early by `watch` (a cancel flag or a time limit).
+pub(crate) fn run_watched<F: DistanceField>(
+    fields: &[F],
+    params: &Params,
+    watch: &Watch,
+) -> Result<Output, Error> {
     let start = Instant::now();
+    watch.stage("boxes", None);
     let lattice = tree::Lattice::new(&params.domain, params.max_box);
     let eps = params.epsilon.max(resolution(&params.domain, &lattice));
     let min_box = 0.5 * eps;
-    let budget = Budget::new(&params.limits, fields.len());
+    let budget = Budget::new(&params.limits, fields.len(), watch);
     if let Some(m) = params.max_box {
         budget.check_max_box(m, &params.domain)?;
     }

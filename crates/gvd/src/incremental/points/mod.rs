@@ -32,6 +32,7 @@ mod output;
 pub(crate) mod predicates;
 
 use crate::complex::VoronoiComplex;
+use crate::control::Watch;
 use crate::geom::{Aabb, Point};
 use crate::Error;
 use graph::{Graph, GHOST};
@@ -81,6 +82,11 @@ impl PointDiagram {
     /// 700 million points. Coincident points are allowed: the one with the least index
     /// owns the cell (see [`duplicates`](Self::duplicates)).
     pub fn new(points: &[Point], domain: Aabb) -> Result<Self, Error> {
+        Self::watched(points, domain, &Watch::default())
+    }
+
+    /// [`new`](Self::new), stopped early by `watch` (checked per inserted point).
+    pub(crate) fn watched(points: &[Point], domain: Aabb, watch: &Watch) -> Result<Self, Error> {
         let d = domain.to_array();
         if d.iter().any(|v| !v.is_finite()) || !(d[0] <= d[2] && d[1] <= d[3]) {
             return Err(Error::scene(
@@ -140,7 +146,11 @@ impl PointDiagram {
 
         let mut b = Builder::new(&pts, far, n);
         let (mut duplicates, mut skipped) = (Vec::new(), Vec::new());
+        watch.stage("points", Some(n as u64));
         for i in 0..n as u32 {
+            if !watch.tick(1) {
+                watch.check()?;
+            }
             match b.insert(i) {
                 Outcome::Inserted => {}
                 Outcome::Duplicate(s) => {

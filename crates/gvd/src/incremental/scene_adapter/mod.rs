@@ -27,11 +27,13 @@ use super::segments_arcs::{
     NEAR_TOUCH,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
+use crate::control::Watch;
 use crate::geom::arc::{partial_sweep, ray_crosses_odd};
 use crate::geom::grid::SparseGrid;
 use crate::geom::ring::even_odd_contains;
 use crate::geom::Point;
 use crate::scene::{Metric, Mode, Scene, SiteKind};
+use crate::subdivision::{Budget, Limits};
 use crate::Error;
 use assembly::{assemble, Stretch};
 use phases::Phases;
@@ -625,10 +627,16 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
 
 /// The diagram of a scene of Euclidean points, segments, arcs, polylines and polygons;
 /// with `bisectors`, every edge also carries its exact bisector in offset-parameter
-/// form ([`Edge::bisector`]).
-pub fn scene_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, Error> {
+/// form ([`Edge::bisector`]). `watch` stops the construction early; the polylines
+/// drawn hold at most the points `limits` allow ([`Error::Budget`] beyond).
+pub fn scene_voronoi(
+    scene: &Scene,
+    bisectors: bool,
+    limits: &Limits,
+    watch: &Watch,
+) -> Result<VoronoiComplex, Error> {
     if let Some(s) = scene.unit_scale() {
-        let mut c = scene_voronoi(&scene.scaled(s), bisectors)?;
+        let mut c = scene_voronoi(&scene.scaled(s), bisectors, limits, watch)?;
         c.scale(1.0 / s);
         return Ok(c);
     }
@@ -652,9 +660,11 @@ pub fn scene_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, E
         return Err(arc_conflict_error(&g, c));
     }
     phases.end("input");
-    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain())?;
+    let budget = Budget::new(limits, scene.sites().len(), watch);
+    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain(), budget)?;
     phases.end("construction");
     let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases)?;
+    diagram.budget.check(scene.epsilon())?;
     phases.end("assembly");
     complex.stats.insert(
         "topology_overrides".into(),

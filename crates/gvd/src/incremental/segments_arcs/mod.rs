@@ -31,6 +31,7 @@ pub(crate) use geometry::Gen;
 use super::points::PointDiagram;
 use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range};
+use crate::subdivision::Budget;
 use crate::Error;
 use geometry::{Arc, Bisector, Line};
 use graph::{Graph, GHOST, NONE};
@@ -50,6 +51,8 @@ pub(crate) struct SegmentDiagram {
     scale: f64,
     /// See [`Scratch::overrides`](insert::Scratch).
     pub(crate) overrides: usize,
+    /// The output points the polylines may take, and the run's watch.
+    pub(crate) budget: Budget,
 }
 
 /// An edge of the raw diagram: two generators and two vertices; its polyline is
@@ -77,17 +80,21 @@ pub(crate) struct RawVertex {
 
 impl SegmentDiagram {
     /// The diagram of the distinct `points` and the `segments` between them (pairs of
-    /// point indices). The caller has checked that the segments do not cross.
+    /// point indices). The caller has checked that the segments do not cross. The
+    /// budget's watch stops the construction early (checked per inserted site); its
+    /// points bound the polylines drawn.
     pub(crate) fn new(
         points: &[Point],
         segments: &[[u32; 2]],
         arcs: &[ArcSpec],
         domain: Aabb,
+        budget: Budget,
     ) -> Result<SegmentDiagram, Error> {
+        let watch = budget.watch().clone();
         let n = points.len();
         let mut with_frame = points.to_vec();
         with_frame.extend(frame(points, arcs, domain));
-        let pd = PointDiagram::new(&with_frame, domain)?;
+        let pd = PointDiagram::watched(&with_frame, domain, &watch)?;
         let mut graph = Graph::from_points(&pd);
         let mut face_of_point = vec![0u32; with_frame.len()];
         let mut point_id = vec![u32::MAX; pd.pts.len()];
@@ -122,7 +129,14 @@ impl SegmentDiagram {
             .collect();
         let mut faces_at_point: Vec<Vec<u32>> = vec![Vec::new(); pd.pts.len()];
         let mut scratch = Scratch::default();
+        watch.stage(
+            "segments and arcs",
+            Some((lines.len() + arc_gens.len()) as u64),
+        );
         for k in insertion_order(&lines, &arc_gens) {
+            if !watch.tick(1) {
+                watch.check()?;
+            }
             let sites = Sites {
                 points: &pd.pts,
                 lines: &lines,
@@ -163,6 +177,7 @@ impl SegmentDiagram {
             lines,
             arcs: arc_gens,
             scale: pd.scale,
+            budget,
         })
     }
 
@@ -303,7 +318,8 @@ impl SegmentDiagram {
             arcs: &self.arcs,
             faces_at_point: &[],
         };
-        if Bisector::is_line(sites.shape(ga), sites.shape(gb)) {
+        // once the points have run out, chords (the run then ends with the budget error)
+        if Bisector::is_line(sites.shape(ga), sites.shape(gb)) || self.budget.exhausted() {
             out.extend([pa * inv, pb * inv]);
             return;
         }
@@ -312,6 +328,7 @@ impl SegmentDiagram {
             .bisector(ga, gb, pa, pb)
             .polyline(pa, pb, tol * self.scale, out);
         out[start..].iter_mut().for_each(|p| *p = *p * inv);
+        self.budget.take_points(out.len() - start);
     }
 }
 

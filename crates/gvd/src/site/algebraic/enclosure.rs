@@ -66,15 +66,19 @@ pub(super) struct Enclosure {
 
 /// Deepest refinement below the clip box.
 const MAX_DEPTH: u32 = 40;
+/// Most boxes an enclosure may visit: bounded work where f64 cannot resolve the curve
+/// over its clip box (a tiny curve in a huge domain keeps every box near it undecided).
+pub(super) const MAX_BOXES: usize = 1 << 20;
 
 impl Enclosure {
-    /// The enclosure of `{f = 0} ∩ clip` with leaves no longer than `leaf_size`.
+    /// The enclosure of `{f = 0} ∩ clip` with leaves no longer than `leaf_size`, or
+    /// `None` when it needs more than [`MAX_BOXES`] boxes.
     pub(super) fn build(
         f: &crate::num::poly::Poly,
         jet: &Jet,
         clip: &Aabb,
         leaf_size: f64,
-    ) -> Self {
+    ) -> Option<Self> {
         let magnitude = clip
             .min
             .x
@@ -87,10 +91,15 @@ impl Enclosure {
             margin: 64.0 * f64::EPSILON * magnitude,
             ..Default::default()
         };
-        let builder = Builder { f, jet, leaf_size };
+        let builder = Builder {
+            f,
+            jet,
+            leaf_size,
+            boxes: std::cell::Cell::new(0),
+        };
         let form = Bernstein2::from_poly(f, clip);
         builder.node(&mut e, *clip, &form, 0);
-        e
+        (builder.boxes.get() <= MAX_BOXES).then_some(e)
     }
 
     pub(super) fn root(&self) -> Option<u32> {
@@ -164,11 +173,14 @@ struct Builder<'a> {
     f: &'a crate::num::poly::Poly,
     jet: &'a Jet,
     leaf_size: f64,
+    /// Boxes visited, against [`MAX_BOXES`].
+    boxes: std::cell::Cell<usize>,
 }
 
 impl Builder<'_> {
     fn node(&self, e: &mut Enclosure, b: Aabb, form: &Bernstein2, depth: u32) -> Option<u32> {
-        if form.range().excludes_zero() {
+        self.boxes.set(self.boxes.get() + 1);
+        if self.boxes.get() > MAX_BOXES || form.range().excludes_zero() {
             return None;
         }
         if b.longest_side() <= self.leaf_size || depth >= MAX_DEPTH {

@@ -66,7 +66,20 @@ impl AlgebraicField {
     pub fn new(site: usize, f: &Poly, clip: Aabb, resolution: f64) -> Result<Self, Error> {
         let jet = Jet::new(f);
         let leaf_size = resolution.max(1e-12 * clip.longest_side());
-        let mut enclosure = Enclosure::build(f, &jet, &clip, leaf_size);
+        let Some(mut enclosure) = Enclosure::build(f, &jet, &clip, leaf_size) else {
+            return Err(Error::site(
+                site,
+                "equation",
+                format!(
+                    "enclosing the curve over its clip box ({:e} wide) at {leaf_size:e} needs \
+                     more than {} boxes (the curve is tiny beside the box, or f64 cannot \
+                     resolve it there); give a 'clip' box around the curve, a smaller domain \
+                     or a coarser epsilon",
+                    clip.longest_side(),
+                    enclosure::MAX_BOXES
+                ),
+            ));
+        };
         if enclosure.root().is_none() {
             return Err(Error::site(
                 site,

@@ -19,6 +19,7 @@ use super::segments;
 use super::tree::Lattice;
 use super::Output;
 use crate::complex::VoronoiComplex;
+use crate::control::Watch;
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
 use crate::scene::{Mode, Scene};
@@ -67,15 +68,22 @@ fn grown(d: &Aabb) -> Aabb {
 }
 
 /// Computes the diagram of a polygonal scene by YSL12, or refuses a site it cannot
-/// take; [`Error::Budget`] when the boxes or points run out.
-pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Output, Error> {
+/// take; [`Error::Budget`] when the boxes or points run out, [`Error::Cancelled`] (or
+/// the time limit's [`Error::Budget`]) when `watch` stops the run.
+pub(crate) fn run_scene(
+    scene: &Scene,
+    filters: &Filters,
+    limits: &Limits,
+    watch: &Watch,
+) -> Result<Output, Error> {
     let start = Instant::now();
+    watch.stage("boxes", None);
     let poly = Polygonal::new(scene)?;
     let domain = scene.domain();
     let root = grown(&domain);
     let lattice = Lattice::new(&root, None);
     let eps = scene.epsilon().max(super::resolution(&root, &lattice));
-    let budget = Budget::new(limits, poly.features.len());
+    let budget = Budget::new(limits, poly.features.len(), watch);
     let ctx = Ctx {
         poly: &poly,
         lattice: &lattice,
@@ -103,6 +111,7 @@ pub fn run_scene(scene: &Scene, filters: &Filters, limits: &Limits) -> Result<Ou
     let mut local_splits = 0;
     let mut rounds = 0;
     let outputs = loop {
+        watch.check()?;
         let segs = segments::build(&refine::as_leaves(&leaves), &lattice);
         let nodes = construct::via_nodes(&poly, &leaves, &segs, &tol);
         let last = rounds >= MAX_ROUNDS || budget.exhausted();

@@ -656,6 +656,10 @@ pub fn scene_voronoi(scene: &Scene, bisectors: bool) -> Result<VoronoiComplex, E
     phases.end("construction");
     let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases)?;
     phases.end("assembly");
+    if scene.mode() == Mode::Voronoi {
+        complex.cells = crate::complex::cells::site_cells(&complex, scene);
+        phases.end("cells");
+    }
     complex.stats.insert(
         "topology_overrides".into(),
         serde_json::json!(diagram.overrides),

@@ -13,6 +13,7 @@ pub enum FormatArg {
     Geojson,
     Wkt,
     Dxf,
+    Svg,
 }
 
 impl From<FormatArg> for Format {
@@ -22,6 +23,7 @@ impl From<FormatArg> for Format {
             FormatArg::Geojson => Format::GeoJson,
             FormatArg::Wkt => Format::Wkt,
             FormatArg::Dxf => Format::Dxf,
+            FormatArg::Svg => Format::Svg,
         }
     }
 }
@@ -39,7 +41,7 @@ fn format_of(path: &Path, given: Option<FormatArg>) -> Result<Format> {
         Some(f) => Ok(f),
         None if path.extension().is_none() => Ok(Format::Json),
         None => bail!(
-            "cannot tell the format of {} from its extension (.json, .geojson, .wkt, .dxf): give --format",
+            "cannot tell the format of {} from its extension (.json, .geojson, .wkt, .dxf, .svg): give --format",
             path.display()
         ),
     }

@@ -46,7 +46,7 @@ enum Command {
 
 #[derive(Args)]
 struct ComputeArgs {
-    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT or DXF by its extension (`-`
+    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT, DXF or SVG by its extension (`-`
     /// reads JSON from standard input).
     scene: PathBuf,
     /// The scene's format, whatever its extension.
@@ -106,7 +106,7 @@ struct ComputeArgs {
 
 #[derive(Args)]
 struct OffsetArgs {
-    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT or DXF by its extension (`-`
+    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT, DXF or SVG by its extension (`-`
     /// reads JSON from standard input).
     scene: PathBuf,
     /// The scene's format, whatever its extension.

@@ -13,7 +13,10 @@ fn area(c: &Cell) -> f64 {
 }
 
 fn scene_file(name: &str) -> Scene {
-    let path = format!("{}/../../examples/scenes/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../examples/scenes/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
     Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
@@ -109,7 +112,11 @@ fn a_cell_inside_a_polygon_is_its_hole() {
     // The hole is the point's cell, which lies inside the polygon's hole (1.3 × 1.2)
     // away from the polygon's boundary.
     let point = d.cells.iter().find(|c| c.site == 1).unwrap();
-    assert!((area(point) + signed_area(hole)).abs() < 1e-12, "{}", area(point));
+    assert!(
+        (area(point) + signed_area(hole)).abs() < 1e-12,
+        "{}",
+        area(point)
+    );
     assert!(area(point) > 0.1 && area(point) < 1.56);
     assert!(even_odd_contains(hole, Point::new(-0.3, -0.5)));
 }

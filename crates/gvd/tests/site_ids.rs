@@ -40,13 +40,17 @@ fn ids_reach_json_geojson_and_svg() {
 
         let text = json::write_diagram(&d);
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-        assert_eq!(v["site_ids"], serde_json::json!(["well <A> & \"B\"", null, "c"]));
+        assert_eq!(
+            v["site_ids"],
+            serde_json::json!(["well <A> & \"B\"", null, "c"])
+        );
         assert_eq!(json::read_diagram(&text).unwrap().site_ids, want);
         let mut streamed = Vec::new();
         json::write_diagram_to(&d, &mut streamed).unwrap();
         assert_eq!(String::from_utf8(streamed).unwrap(), text);
 
-        let g: serde_json::Value = serde_json::from_str(&geojson::write_diagram(&scene, &d)).unwrap();
+        let g: serde_json::Value =
+            serde_json::from_str(&geojson::write_diagram(&scene, &d)).unwrap();
         let features = g["features"].as_array().unwrap();
         let edge = features
             .iter()

@@ -17,13 +17,12 @@
 //! `LINE` and `ARC` entities in an `ENTITIES`-only file (DXF R12), which CAM software
 //! and ezdxf open.
 
-use super::read::{build_scene, FileValues, Found, ReadOptions};
+use super::read::{build_scene, snap_to_arc_ends, FileValues, Found, ReadOptions};
 use crate::complex::VoronoiComplex;
 use crate::error::Error;
-use crate::geom::arc::Arc;
 use crate::geom::Point;
 use crate::offset::{Offset, Primitive};
-use crate::scene::{Scene, Site, SiteKind};
+use crate::scene::{Scene, Site};
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write;
@@ -193,51 +192,6 @@ fn polyline_sites(vertices: &[Vertex], closed: bool) -> Vec<Site> {
     out
 }
 
-/// Moves the ends of straight sites within `tol` of an arc's computed end onto it.
-fn snap_to_arc_ends(found: &mut [Found], tol: f64) {
-    let mut ends: Vec<Point> = found
-        .iter()
-        .filter_map(|f| match f.site.kind {
-            SiteKind::Arc {
-                center,
-                radius,
-                start_angle,
-                end_angle,
-            } => Some(Arc::from_angles(center, radius, start_angle, end_angle).ends()),
-            _ => None,
-        })
-        .flatten()
-        .collect();
-    if ends.is_empty() {
-        return;
-    }
-    ends.sort_by(|a, b| a.x.total_cmp(&b.x));
-    let snap = |p: &mut Point| {
-        let from = ends.partition_point(|e| e.x < p.x - tol);
-        if let Some(e) = ends[from..]
-            .iter()
-            .take_while(|e| e.x <= p.x + tol)
-            .find(|e| e.dist(*p) <= tol)
-        {
-            *p = *e;
-        }
-    };
-    for f in found.iter_mut() {
-        match &mut f.site.kind {
-            SiteKind::Segment { from, to } => {
-                snap(from);
-                snap(to);
-            }
-            SiteKind::Polyline { points } => {
-                let last = points.len() - 1;
-                snap(&mut points[0]);
-                snap(&mut points[last]);
-            }
-            _ => {}
-        }
-    }
-}
-
 /// Reads a scene from an ASCII DXF file.
 pub fn read_scene(data: &[u8], options: &ReadOptions) -> Result<(Scene, Vec<String>), Error> {
     if data.starts_with(b"AutoCAD Binary DXF") {
@@ -313,22 +267,7 @@ pub fn read_scene(data: &[u8], options: &ReadOptions) -> Result<(Scene, Vec<Stri
         let list: Vec<String> = skipped.iter().map(|(k, n)| format!("{k} ×{n}")).collect();
         warnings.push(format!("entities not read: {}", list.join(", ")));
     }
-    let size = found
-        .iter()
-        .flat_map(|f| match &f.site.kind {
-            SiteKind::Segment { from, to } => vec![*from, *to],
-            SiteKind::Polyline { points } => points.clone(),
-            SiteKind::Arc { center, radius, .. } => {
-                vec![
-                    *center + Point::new(*radius, *radius),
-                    *center - Point::new(*radius, *radius),
-                ]
-            }
-            _ => Vec::new(),
-        })
-        .map(|p| p.x.abs().max(p.y.abs()))
-        .fold(0.0, f64::max);
-    snap_to_arc_ends(&mut found, 1e-9 * size.max(1e-300));
+    snap_to_arc_ends(&mut found);
     Ok((
         build_scene(found, FileValues::default(), options)?,
         warnings,
@@ -415,6 +354,8 @@ pub fn write_diagram(diagram: &VoronoiComplex) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::arc::Arc;
+    use crate::scene::SiteKind;
 
     fn dxf(entities: &str) -> String {
         format!("0\nSECTION\n2\nHEADER\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n{entities}0\nENDSEC\n0\nEOF\n")

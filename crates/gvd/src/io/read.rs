@@ -17,7 +17,8 @@ pub enum Format {
     GeoJson,
     /// Well-known text: one geometry per line, or a collection.
     Wkt,
-    /// AutoCAD DXF, ASCII: LINE, ARC, CIRCLE, POINT, LWPOLYLINE and POLYLINE with bulges.
+    /// AutoCAD DXF, ASCII: LINE, ARC, CIRCLE, POINT, LWPOLYLINE and POLYLINE with bulges,
+    /// SPLINE, ELLIPSE.
     Dxf,
     /// SVG drawings: lines, polylines, polygons, rects, circles, ellipses and paths.
     Svg,

@@ -221,7 +221,7 @@ fn spline_site(e: &Entity, origin: &str) -> Result<Site, Error> {
     let weights = e.numbers(41);
     let rational = e.flags() & 4 == 4 || weights.iter().any(|&w| w != 1.0);
     let degree = e.number(71).unwrap_or(3.0);
-    if !(degree >= 1.0 && degree <= 64.0 && degree.fract() == 0.0) {
+    if !((1.0..=64.0).contains(&degree) && degree.fract() == 0.0) {
         return Err(Error::Json(format!(
             "DXF: {origin}: group code 71 (degree) must be a whole number from 1 to 64, found {degree}"
         )));

@@ -185,3 +185,28 @@ def test_docstring_example():
 
     failures, tried = doctest.testmod(gvd)
     assert tried > 0 and failures == 0
+
+
+def test_segment_cells_site_ids_and_an_svg_drawing():
+    shapely = pytest.importorskip("shapely")
+    import pathlib
+
+    scene = gvd.Scene([0, 0, 4, 3])
+    scene.add_segment([0.5, 0.5], [1.5, 2.5], id="wall")
+    scene.add_polygon([[[2.5, 0.5], [3.5, 0.5], [3.5, 1.5]]], id="pillar")
+    scene.add_arc([2.5, 2.2], 0.4, 0.0, 2.0)
+    d = gvd.compute(scene)
+    assert json.loads(d.to_json())["site_ids"] == ["wall", "pillar", None]
+    assert d.site_ids == ["wall", "pillar", None]
+    # the segment engine's cells tile the domain, each holding its site
+    cells = d.shapely_cells()
+    assert sorted(d.cell_sites.tolist()) == [0, 1, 2]
+    assert abs(sum(c.area for c in cells) - 12.0) < 1e-9
+    pillar = cells[d.cell_sites.tolist().index(1)]
+    assert pillar.contains(shapely.Polygon([[2.5, 0.5], [3.5, 0.5], [3.5, 1.5]]).buffer(-1e-6))
+    assert "<title>wall</title>" in d.to_svg()
+    # an SVG drawing read by its extension
+    drawing = pathlib.Path(__file__).resolve().parents[2] / "examples" / "scenes" / "bracket.svg"
+    bracket = gvd.compute(str(drawing))
+    assert "hole-left" in bracket.site_ids
+    assert bracket.verify(grid=128)

@@ -1,4 +1,5 @@
-//! Scene formats in (by extension or `--format`) and the GeoJSON and DXF outputs.
+//! Scene formats in (by extension or `--format`), outputs by extension (`-o`), PNG
+//! pictures (our SVG rendered by resvg) and shell completions.
 
 use anyhow::{bail, Context, Result};
 use gvd::io::Format;
@@ -13,6 +14,7 @@ pub enum FormatArg {
     Geojson,
     Wkt,
     Dxf,
+    Svg,
 }
 
 impl From<FormatArg> for Format {
@@ -22,6 +24,7 @@ impl From<FormatArg> for Format {
             FormatArg::Geojson => Format::GeoJson,
             FormatArg::Wkt => Format::Wkt,
             FormatArg::Dxf => Format::Dxf,
+            FormatArg::Svg => Format::Svg,
         }
     }
 }
@@ -39,7 +42,7 @@ fn format_of(path: &Path, given: Option<FormatArg>) -> Result<Format> {
         Some(f) => Ok(f),
         None if path.extension().is_none() => Ok(Format::Json),
         None => bail!(
-            "cannot tell the format of {} from its extension (.json, .geojson, .wkt, .dxf): give --format",
+            "cannot tell the format of {} from its extension (.json, .geojson, .wkt, .dxf, .svg): give --format",
             path.display()
         ),
     }
@@ -90,4 +93,49 @@ impl From<ModeArg> for gvd::Mode {
             ModeArg::MedialAxis => gvd::Mode::MedialAxis,
         }
     }
+}
+
+/// What `gvd compute` writes to an `-o` path, by its extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputKind {
+    Json,
+    Svg,
+    Png,
+    GeoJson,
+    Dxf,
+}
+
+/// The kind of an `-o` path: by its extension (`.json`, `.svg`, `.png`, `.geojson`,
+/// `.dxf`, case ignored); `-` is JSON on standard output.
+pub fn output_kind(path: &Path) -> Result<OutputKind> {
+    if path.as_os_str() == "-" {
+        return Ok(OutputKind::Json);
+    }
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    Ok(match ext.as_deref() {
+        Some("json") => OutputKind::Json,
+        Some("svg") => OutputKind::Svg,
+        Some("png") => OutputKind::Png,
+        Some("geojson") => OutputKind::GeoJson,
+        Some("dxf") => OutputKind::Dxf,
+        _ => bail!(
+            "cannot tell what to write to {} from its extension (.json, .svg, .png, .geojson, .dxf): give --json, --svg, --png, --geojson or --dxf",
+            path.display()
+        ),
+    })
+}
+
+/// The SVG picture rendered to PNG at its own size (`width` and `height` in pixels).
+pub fn svg_to_png(svg: &str) -> Result<Vec<u8>> {
+    use resvg::{tiny_skia, usvg};
+    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
+        .context("cannot read the picture back for PNG")?;
+    let size = tree.size().to_int_size();
+    let mut pixmap =
+        tiny_skia::Pixmap::new(size.width(), size.height()).context("the picture has no pixels")?;
+    resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
+    pixmap.encode_png().context("cannot encode the PNG")
 }

@@ -8,8 +8,8 @@ mod output;
 mod progress;
 
 use anyhow::{bail, Context, Result};
-use clap::{Args, Parser, Subcommand};
-use formats::{read_scene_as, FormatArg, ModeArg};
+use clap::{Args, CommandFactory, Parser, Subcommand};
+use formats::{output_kind, read_scene_as, svg_to_png, FormatArg, ModeArg, OutputKind};
 use gvd::VoronoiComplex;
 use output::Outputs;
 use std::io::Read;
@@ -44,11 +44,17 @@ enum Command {
     Verify(VerifyArgs),
     /// Reproduce a paper's table of timings and box counts.
     Bench(BenchArgs),
+    /// Print a shell completion script (e.g. `gvd completions bash >
+    /// /etc/bash_completion.d/gvd`).
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
 }
 
 #[derive(Args)]
 struct ComputeArgs {
-    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT or DXF by its extension (`-`
+    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT, DXF or SVG by its extension (`-`
     /// reads JSON from standard input).
     scene: PathBuf,
     /// The scene's format, whatever its extension.
@@ -69,6 +75,13 @@ struct ComputeArgs {
     /// Write a picture here (SVG; `-` for standard output).
     #[arg(long)]
     svg: Option<PathBuf>,
+    /// Write the same picture here as PNG.
+    #[arg(long)]
+    png: Option<PathBuf>,
+    /// Write here, in the format of the extension (.json, .svg, .png, .geojson, .dxf;
+    /// `-`: JSON on standard output); repeatable.
+    #[arg(short = 'o', long = "output")]
+    output: Vec<PathBuf>,
     /// Draw the subdivision boxes in the picture.
     #[arg(long)]
     boxes: bool,
@@ -111,7 +124,7 @@ struct ComputeArgs {
 
 #[derive(Args)]
 struct OffsetArgs {
-    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT or DXF by its extension (`-`
+    /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT, DXF or SVG by its extension (`-`
     /// reads JSON from standard input).
     scene: PathBuf,
     /// The scene's format, whatever its extension.
@@ -214,14 +227,34 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Offset(args) => offset(args),
         Command::Verify(args) => verify(args),
         Command::Bench(args) => bench(args),
+        Command::Completions { shell } => {
+            clap_complete::generate(shell, &mut Cli::command(), "gvd", &mut std::io::stdout());
+            Ok(ExitCode::SUCCESS)
+        }
     }
 }
 
 /// `gvd compute`: the diagram, written as JSON and/or SVG.
-fn compute(args: ComputeArgs) -> Result<ExitCode> {
+fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
+    for path in std::mem::take(&mut args.output) {
+        let slot = match output_kind(&path)? {
+            OutputKind::Json => &mut args.json,
+            OutputKind::Svg => &mut args.svg,
+            OutputKind::Png => &mut args.png,
+            OutputKind::GeoJson => &mut args.geojson,
+            OutputKind::Dxf => &mut args.dxf,
+        };
+        let shown = path.display().to_string();
+        if let Some(before) = slot.replace(path) {
+            bail!(
+                "two outputs in one format: {} and {shown}",
+                before.display()
+            );
+        }
+    }
     let mut outputs = outputs_for(
         &args.scene,
-        &[&args.json, &args.svg, &args.geojson, &args.dxf],
+        &[&args.json, &args.svg, &args.png, &args.geojson, &args.dxf],
     )?;
     if let Some(n) = args.threads {
         rayon::ThreadPoolBuilder::new()
@@ -275,7 +308,7 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
     if let Some(path) = &args.json {
         outputs.write(path, |w| gvd::io::json::write_diagram_to(d, &mut &mut *w))?;
     }
-    if let Some(path) = &args.svg {
+    if args.svg.is_some() || args.png.is_some() {
         let opts = gvd::io::svg::SvgOptions {
             boxes: if args.boxes {
                 out.boxes.clone()
@@ -285,7 +318,13 @@ fn compute(args: ComputeArgs) -> Result<ExitCode> {
             ..Default::default()
         };
         let svg = gvd::io::svg::render_svg(&sc, d, &opts);
-        outputs.write(path, |w| w.write_all(svg.as_bytes()))?;
+        if let Some(path) = &args.png {
+            let png = svg_to_png(&svg)?;
+            outputs.write(path, |w| w.write_all(&png))?;
+        }
+        if let Some(path) = &args.svg {
+            outputs.write(path, |w| w.write_all(svg.as_bytes()))?;
+        }
     }
     if let Some(path) = &args.geojson {
         let text = gvd::io::geojson::write_diagram(&sc, d);
@@ -402,7 +441,7 @@ fn outputs_for(scene: &Path, paths: &[&Option<PathBuf>]) -> Result<Outputs> {
         any = true;
     }
     if !any {
-        bail!("nothing to write: give --json, --svg, --geojson or --dxf OUT");
+        bail!("nothing to write: give -o OUT (.json, .svg, .png, .geojson, .dxf), or --json, --svg, --png, --geojson or --dxf OUT");
     }
     Ok(outputs)
 }

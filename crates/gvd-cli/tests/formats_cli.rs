@@ -150,3 +150,82 @@ fn the_format_comes_from_the_extension_or_the_flag() {
         "{err}"
     );
 }
+
+#[test]
+fn an_svg_drawing_computes_to_png_json_and_geojson_by_extension() {
+    let drawing = repo("examples/scenes/bracket.svg");
+    let (png, json, svg, geojson) = (
+        scratch("bracket.png"),
+        scratch("bracket.json"),
+        scratch("bracket.svg"),
+        scratch("bracket.geojson"),
+    );
+    ok(&gvd(&[
+        "compute".as_ref(),
+        drawing.as_ref(),
+        "-o".as_ref(),
+        png.as_ref(),
+        "-o".as_ref(),
+        json.as_ref(),
+        "--output".as_ref(),
+        svg.as_ref(),
+        "-o".as_ref(),
+        geojson.as_ref(),
+    ]));
+    let out = gvd(&["verify".as_ref(), drawing.as_ref(), json.as_ref()]);
+    ok(&out);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("PASS"));
+    // the ids of the drawing's elements reach the JSON diagram
+    let d: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(d["site_ids"]
+        .as_array()
+        .unwrap()
+        .contains(&serde_json::json!("hole-left")));
+    assert!(!d["cells"].as_array().unwrap().is_empty());
+    // the PNG decodes, at the SVG picture's size, and is not blank
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    let attr = |name: &str| -> u32 {
+        let at = picture.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        picture[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    let decoder = png::Decoder::new(std::fs::File::open(&png).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!((info.width, info.height), (attr("width"), attr("height")));
+    assert_eq!(info.color_type, png::ColorType::Rgba);
+    let pixels: Vec<&[u8]> = buf[..info.buffer_size()].chunks(4).collect();
+    let white = pixels.iter().filter(|p| p[..3] == [255, 255, 255]).count();
+    let mut colours: Vec<&[u8]> = pixels.clone();
+    colours.sort();
+    colours.dedup();
+    assert!(
+        white < pixels.len() / 2,
+        "{white} of {} white",
+        pixels.len()
+    );
+    assert!(colours.len() > 20, "{} colours", colours.len());
+    // an output of unknown extension is refused before any work
+    let bad = gvd(&[
+        "compute".as_ref(),
+        drawing.as_ref(),
+        "-o".as_ref(),
+        scratch("x.bmp").as_ref(),
+    ]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("from its extension"));
+}
+
+#[test]
+fn completions_for_every_shell() {
+    for shell in ["bash", "zsh", "fish"] {
+        let out = gvd(&["completions".as_ref(), shell.as_ref()]);
+        ok(&out);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            text.contains("compute") && text.contains("geojson") && text.contains("output"),
+            "{shell}"
+        );
+    }
+}

@@ -9,7 +9,7 @@ use std::path::Path;
 
 /// The format called `name`, or of `path`'s extension.
 pub fn format_of(name: Option<&str>, path: Option<&Path>) -> PyResult<Format> {
-    let known = "known: json, geojson, wkt, dxf";
+    let known = "known: json, geojson, wkt, dxf, svg";
     match (name, path) {
         (Some(n), _) => Format::from_name(n)
             .ok_or_else(|| option_error("format", format!("unknown format '{n}' ({known})"))),

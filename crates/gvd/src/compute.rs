@@ -98,7 +98,18 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 }
 
 /// [`compute`], also returning the subdivision's leaves (none for the incremental engine).
+/// The diagram carries the sites' user ids ([`VoronoiComplex::site_ids`]) when any site
+/// has one.
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
+    let mut out = run_engine(scene, options)?;
+    if scene.sites().iter().any(|s| s.id.is_some()) {
+        out.complex.site_ids = scene.sites().iter().map(|s| s.id.clone()).collect();
+    }
+    Ok(out)
+}
+
+/// The engine the options and the scene choose, run.
+fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     let watch = Watch::start(&options.control)?;
     check_medial_axis(scene)?;
     if options.engine == Engine::Freeform

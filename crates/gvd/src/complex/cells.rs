@@ -2,8 +2,11 @@
 //! polylines and the domain boundary form, each labelled with the site it belongs to.
 
 use super::{Cell, VoronoiComplex};
+use crate::geom::grid::{bounds_of_points, BucketGrid};
 use crate::geom::ring::{even_odd_contains, signed_area};
 use crate::geom::{Aabb, Point};
+use crate::offset::feature::{Features, Shape};
+use crate::scene::Scene;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
@@ -96,6 +99,34 @@ pub fn build_cells(
             }
         })
         .collect()
+}
+
+/// The cells of a `voronoi`-mode diagram of Euclidean points, segments, arcs, polylines
+/// and polygons: [`build_cells`] with each face given to its nearest site, found among
+/// the sites' corners, edges and arcs bucketed about one per grid cell. A polygon's
+/// inside is part of its cell (a point inside it is nearer to its boundary than to any
+/// other site, which lies outside). Arcs' cells are bounded by the edges' polylines,
+/// within epsilon of the true curves. Empty for scenes of other kinds.
+pub(crate) fn site_cells(complex: &VoronoiComplex, scene: &Scene) -> Vec<Cell> {
+    let Ok(features) = Features::of_scene(scene) else {
+        return Vec::new();
+    };
+    let (shapes, site_of) = (&features.shapes, features.sites_of_shapes());
+    if shapes.is_empty() {
+        return Vec::new();
+    }
+    let domain = scene.domain();
+    let boxes: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
+    let corners = boxes.iter().flat_map(|b| [b.min, b.max]);
+    let extent = bounds_of_points(corners.chain([domain.min, domain.max]));
+    let n = ((shapes.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+    let side = (extent.width() * extent.height() / (n * n) as f64).sqrt();
+    let side = side.max(extent.longest_side() / 1024.0);
+    let grid = BucketGrid::new(extent, side, 1024, shapes.len(), |k| boxes[k]);
+    build_cells(complex, &domain, &|q| {
+        grid.nearest_by(q, |k| shapes[k as usize].distance(q))
+            .map_or(0, |(_, k)| site_of[k as usize])
+    })
 }
 
 /// A closed face boundary: `ring[i] → ring[i + 1]` lies on an edge of those generator

@@ -130,6 +130,11 @@ pub struct VoronoiComplex {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     /// The cells as rings, when computed.
     pub cells: Vec<Cell>,
+    /// The user ids of the scene's sites by site index (`null` where a site has none),
+    /// when any site has one: what [`crate::compute`] copies from the scene so that every
+    /// writer can echo them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub site_ids: Vec<Option<String>>,
     /// Figures of the run: `seconds`, `boxes`, `uncertified_boxes`, ...
     #[serde(default)]
     pub stats: BTreeMap<String, serde_json::Value>,

@@ -74,11 +74,6 @@ impl BucketGrid {
         grid
     }
 
-    /// The side of a cell.
-    pub fn side(&self) -> f64 {
-        self.side
-    }
-
     /// The number of cells along x and along y.
     pub fn dims(&self) -> (usize, usize) {
         (self.nx, self.ny)
@@ -149,6 +144,30 @@ impl BucketGrid {
                 }
             }
         }
+    }
+
+    /// The item nearest to `q` by `dist(item)` (the smallest index among equals), with
+    /// its distance; `None` when the grid holds no item. Rings of cells are searched
+    /// outwards until the next ring is farther than the best distance, so `dist` must be
+    /// at least the distance from `q` to the item's box.
+    pub fn nearest_by(&self, q: Point, mut dist: impl FnMut(u32) -> f64) -> Option<(f64, u32)> {
+        let c = self.cell_of(q);
+        let mut best: Option<(f64, u32)> = None;
+        for ring in 0..=self.nx.max(self.ny) {
+            // items in ring `ring` or beyond are at least (ring − 1) cells away from q
+            if let Some((d, _)) = best {
+                if ring > 0 && d < (ring - 1) as f64 * self.side {
+                    break;
+                }
+            }
+            self.for_each_in_ring(c, ring, |k| {
+                let d = dist(k);
+                if best.is_none_or(|(bd, bk)| d < bd || (d == bd && k < bk)) {
+                    best = Some((d, k));
+                }
+            });
+        }
+        best
     }
 
     /// Calls `f` with the index of each cell that the box `b` meets.

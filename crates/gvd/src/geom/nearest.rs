@@ -24,24 +24,9 @@ impl<'a> PointGrid<'a> {
     /// The index of the point nearest to `q` (the smallest index among equals), or
     /// `None` when there are no points.
     pub fn nearest(&self, q: Point) -> Option<usize> {
-        let c = self.grid.cell_of(q);
-        let (nx, ny) = self.grid.dims();
-        let mut best: Option<(f64, usize)> = None;
-        for ring in 0..=nx.max(ny) {
-            // points in ring `ring` or beyond are at least (ring − 1) cells away from q
-            if let Some((d, _)) = best {
-                if ring > 0 && d < (ring - 1) as f64 * self.grid.side() {
-                    break;
-                }
-            }
-            self.grid.for_each_in_ring(c, ring, |k| {
-                let (d, k) = (q.dist(self.points[k as usize]), k as usize);
-                if best.is_none_or(|(bd, bk)| d < bd || (d == bd && k < bk)) {
-                    best = Some((d, k));
-                }
-            });
-        }
-        best.map(|(_, k)| k)
+        self.grid
+            .nearest_by(q, |k| q.dist(self.points[k as usize]))
+            .map(|(_, k)| k as usize)
     }
 }
 

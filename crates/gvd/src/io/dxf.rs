@@ -11,19 +11,20 @@
 //! radius `|pq| / (2 sin(2 atan |b|))`, centre at `(p + q)/2 + (1 − b²)/(4b) · (pq)⊥`.
 //! Straight ends within 1e-9 of the drawing's size of an arc's end are moved onto the
 //! arc's computed end `center + r (cos a, sin a)`, so that the scene's shared-end rule
-//! holds. Other entities are listed in a warning. Z is ignored. Binary DXF is refused.
+//! holds. `SPLINE` becomes a `bspline` site (rational with its weights), a whole
+//! `ELLIPSE` an `ellipse` site; elliptical arcs and other entities are listed in a
+//! warning. Z is ignored. Binary DXF is refused.
 //!
 //! Out: offset curves ([`write_offset`]) and diagram edges ([`write_diagram`]) as
 //! `LINE` and `ARC` entities in an `ENTITIES`-only file (DXF R12), which CAM software
 //! and ezdxf open.
 
-use super::read::{build_scene, FileValues, Found, ReadOptions};
+use super::read::{build_scene, snap_to_arc_ends, FileValues, Found, ReadOptions};
 use crate::complex::VoronoiComplex;
 use crate::error::Error;
-use crate::geom::arc::Arc;
 use crate::geom::Point;
 use crate::offset::{Offset, Primitive};
-use crate::scene::{Scene, Site, SiteKind};
+use crate::scene::{Scene, Site};
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write;
@@ -49,6 +50,15 @@ impl Entity {
                 x + 10
             ))),
         }
+    }
+    /// Every value of a repeated group code, in order (unparsable ones as NaN, which
+    /// the scene's checks refuse).
+    fn numbers(&self, code: i32) -> Vec<f64> {
+        self.groups
+            .iter()
+            .filter(|(c, _)| *c == code)
+            .map(|(_, v)| v.trim().parse().unwrap_or(f64::NAN))
+            .collect()
     }
     fn flags(&self) -> i64 {
         self.number(70).map_or(0, |f| f as i64)
@@ -193,49 +203,55 @@ fn polyline_sites(vertices: &[Vertex], closed: bool) -> Vec<Site> {
     out
 }
 
-/// Moves the ends of straight sites within `tol` of an arc's computed end onto it.
-fn snap_to_arc_ends(found: &mut [Found], tol: f64) {
-    let mut ends: Vec<Point> = found
+/// A `SPLINE`: its control points (`10`/`20`), knots (`40`), weights (`41`, when the
+/// rational flag 4 is set or any weight is not 1), degree (`71`) and closed flag (`70`
+/// bit 1), as a `bspline` site. A spline given by fit points alone is refused.
+fn spline_site(e: &Entity, origin: &str) -> Result<Site, Error> {
+    let (xs, ys) = (e.numbers(10), e.numbers(20));
+    if xs.is_empty() {
+        return Err(Error::Json(format!(
+            "DXF: {origin}: a spline given by fit points only is not read; save it with control points"
+        )));
+    }
+    let points: Vec<Point> = xs
         .iter()
-        .filter_map(|f| match f.site.kind {
-            SiteKind::Arc {
-                center,
-                radius,
-                start_angle,
-                end_angle,
-            } => Some(Arc::from_angles(center, radius, start_angle, end_angle).ends()),
-            _ => None,
-        })
-        .flatten()
+        .zip(&ys)
+        .map(|(&x, &y)| Point::new(x, y))
         .collect();
-    if ends.is_empty() {
-        return;
+    let weights = e.numbers(41);
+    let rational = e.flags() & 4 == 4 || weights.iter().any(|&w| w != 1.0);
+    let degree = e.number(71).unwrap_or(3.0);
+    if !((1.0..=64.0).contains(&degree) && degree.fract() == 0.0) {
+        return Err(Error::Json(format!(
+            "DXF: {origin}: group code 71 (degree) must be a whole number from 1 to 64, found {degree}"
+        )));
     }
-    ends.sort_by(|a, b| a.x.total_cmp(&b.x));
-    let snap = |p: &mut Point| {
-        let from = ends.partition_point(|e| e.x < p.x - tol);
-        if let Some(e) = ends[from..]
-            .iter()
-            .take_while(|e| e.x <= p.x + tol)
-            .find(|e| e.dist(*p) <= tol)
-        {
-            *p = *e;
-        }
-    };
-    for f in found.iter_mut() {
-        match &mut f.site.kind {
-            SiteKind::Segment { from, to } => {
-                snap(from);
-                snap(to);
-            }
-            SiteKind::Polyline { points } => {
-                let last = points.len() - 1;
-                snap(&mut points[0]);
-                snap(&mut points[last]);
-            }
-            _ => {}
-        }
+    Ok(Site::bspline(
+        degree as usize,
+        points,
+        e.numbers(40),
+        (rational && !weights.is_empty()).then_some(weights),
+        e.flags() & 1 == 1,
+    ))
+}
+
+/// A whole `ELLIPSE` (parameters `41`..`42` a full turn) as an `ellipse` site: centre
+/// `10`/`20`, major axis end `11`/`21` relative to it, minor-to-major ratio `40`.
+/// `None` for an elliptical arc, which is not read.
+fn ellipse_site(e: &Entity, origin: &str) -> Result<Option<Site>, Error> {
+    let (c, major) = (e.point(10, origin)?, e.point(11, origin)?);
+    let ratio = e.number(40).unwrap_or(f64::NAN);
+    let (t0, t1) = (e.number(41).unwrap_or(0.0), e.number(42).unwrap_or(TAU));
+    let turn = (t1 - t0).abs();
+    if (turn - TAU).abs() > 1e-9 && turn != 0.0 {
+        return Ok(None);
     }
+    let a = major.norm();
+    Ok(Some(Site::ellipse(
+        c,
+        [a, ratio * a],
+        major.y.atan2(major.x),
+    )))
 }
 
 /// Reads a scene from an ASCII DXF file.
@@ -304,6 +320,15 @@ pub fn read_scene(data: &[u8], options: &ReadOptions) -> Result<(Scene, Vec<Stri
                     push(s);
                 }
             }
+            "SPLINE" => push(spline_site(e, &origin)?),
+            "ELLIPSE" => match ellipse_site(e, &origin)? {
+                Some(site) => push(site),
+                None => {
+                    *skipped
+                        .entry("ELLIPSE (elliptical arcs; whole ellipses are read)".into())
+                        .or_default() += 1
+                }
+            },
             other => *skipped.entry(other.to_string()).or_default() += 1,
         }
         k += 1;
@@ -313,22 +338,7 @@ pub fn read_scene(data: &[u8], options: &ReadOptions) -> Result<(Scene, Vec<Stri
         let list: Vec<String> = skipped.iter().map(|(k, n)| format!("{k} ×{n}")).collect();
         warnings.push(format!("entities not read: {}", list.join(", ")));
     }
-    let size = found
-        .iter()
-        .flat_map(|f| match &f.site.kind {
-            SiteKind::Segment { from, to } => vec![*from, *to],
-            SiteKind::Polyline { points } => points.clone(),
-            SiteKind::Arc { center, radius, .. } => {
-                vec![
-                    *center + Point::new(*radius, *radius),
-                    *center - Point::new(*radius, *radius),
-                ]
-            }
-            _ => Vec::new(),
-        })
-        .map(|p| p.x.abs().max(p.y.abs()))
-        .fold(0.0, f64::max);
-    snap_to_arc_ends(&mut found, 1e-9 * size.max(1e-300));
+    snap_to_arc_ends(&mut found);
     Ok((
         build_scene(found, FileValues::default(), options)?,
         warnings,
@@ -415,6 +425,8 @@ pub fn write_diagram(diagram: &VoronoiComplex) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::arc::Arc;
+    use crate::scene::SiteKind;
 
     fn dxf(entities: &str) -> String {
         format!("0\nSECTION\n2\nHEADER\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n{entities}0\nENDSEC\n0\nEOF\n")
@@ -457,14 +469,14 @@ mod tests {
              0\nCIRCLE\n10\n0\n20\n5\n40\n1\n\
              0\nLWPOLYLINE\n90\n4\n70\n1\n10\n10\n20\n0\n10\n14\n20\n0\n10\n14\n20\n3\n10\n10\n20\n3\n\
              0\nLWPOLYLINE\n90\n3\n70\n0\n10\n20\n20\n0\n42\n1\n10\n22\n20\n0\n10\n24\n20\n0\n\
-             0\nTEXT\n1\nhello\n0\nSPLINE\n0\nTEXT\n");
+             0\nTEXT\n1\nhello\n0\nHATCH\n0\nTEXT\n");
         let (scene, warnings) = read_scene(text.as_bytes(), &ReadOptions::default()).unwrap();
         let kinds: Vec<&str> = scene.sites().iter().map(|s| s.kind.name()).collect();
         assert_eq!(
             kinds,
             ["segment", "arc", "arc", "arc", "polygon", "arc", "polyline"]
         );
-        assert_eq!(warnings, ["entities not read: SPLINE ×1, TEXT ×2"]);
+        assert_eq!(warnings, ["entities not read: HATCH ×1, TEXT ×2"]);
         // the polyline's first point is the bulge arc's computed end, to the bit
         let SiteKind::Arc {
             center,
@@ -482,5 +494,64 @@ mod tests {
         assert!(ends.contains(&points[0]), "{ends:?} {points:?}");
         assert!(read_scene(b"AutoCAD Binary DXF\r\n", &ReadOptions::default()).is_err());
         assert!(read_scene(dxf("0\nLINE\n10\nx\n").as_bytes(), &ReadOptions::default()).is_err());
+    }
+
+    #[test]
+    fn splines_and_ellipses() {
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let text = dxf(&format!(
+            "0\nSPLINE\n70\n12\n71\n2\n72\n6\n73\n3\n\
+             40\n0\n40\n0\n40\n0\n40\n1\n40\n1\n40\n1\n\
+             10\n1\n20\n0\n30\n0\n41\n1\n10\n1\n20\n1\n30\n0\n41\n{w}\n10\n0\n20\n1\n30\n0\n41\n1\n\
+             0\nSPLINE\n70\n8\n71\n1\n40\n0\n40\n0\n40\n1\n40\n1\n10\n3\n20\n0\n10\n4\n20\n1\n\
+             0\nELLIPSE\n10\n5\n20\n5\n11\n0\n21\n2\n40\n0.5\n41\n0\n42\n6.283185307179586\n\
+             0\nELLIPSE\n10\n9\n20\n9\n11\n1\n21\n0\n40\n0.5\n41\n0\n42\n1.5\n"
+        ));
+        let (scene, warnings) = read_scene(text.as_bytes(), &ReadOptions::default()).unwrap();
+        assert_eq!(
+            warnings,
+            ["entities not read: ELLIPSE (elliptical arcs; whole ellipses are read) ×1"]
+        );
+        match &scene.sites()[0].kind {
+            SiteKind::Bspline {
+                degree,
+                control_points,
+                knots,
+                weights,
+                closed,
+            } => {
+                assert_eq!((*degree, control_points.len(), knots.len()), (2, 3, 6));
+                assert_eq!(control_points[1], Point::new(1.0, 1.0));
+                assert_eq!(weights.as_deref(), Some(&[1.0, w, 1.0][..]));
+                assert!(!closed);
+            }
+            k => panic!("{k:?}"),
+        }
+        // not rational: no weights
+        assert!(matches!(
+            scene.sites()[1].kind,
+            SiteKind::Bspline {
+                degree: 1,
+                weights: None,
+                ..
+            }
+        ));
+        match scene.sites()[2].kind {
+            SiteKind::Ellipse {
+                center,
+                semi_axes,
+                rotation,
+            } => {
+                assert_eq!((center, semi_axes), (Point::new(5.0, 5.0), [2.0, 1.0]));
+                assert!((rotation - PI / 2.0).abs() < 1e-15);
+            }
+            ref k => panic!("{k:?}"),
+        }
+        let fit_only = dxf("0\nSPLINE\n71\n3\n11\n0\n21\n0\n11\n1\n21\n1\n");
+        let e = read_scene(fit_only.as_bytes(), &ReadOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("fit points only"), "{e}");
+        let bad = dxf("0\nSPLINE\n71\n2\n40\n0\n40\n1\n10\n0\n20\n0\n10\n1\n20\n0\n");
+        let e = read_scene(bad.as_bytes(), &ReadOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("entity 0 (SPLINE)"), "{e}");
     }
 }

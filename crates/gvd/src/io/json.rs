@@ -40,7 +40,7 @@ pub fn write_diagram_to<W: std::io::Write>(
     diagram: &VoronoiComplex,
     out: &mut W,
 ) -> std::io::Result<()> {
-    // The field order and the skipped empty `cells` of `VoronoiComplex`'s derive.
+    // The field order and the skipped empty `cells` and `site_ids` of `VoronoiComplex`'s derive.
     out.write_all(b"{\"vertices\":")?;
     write_list(&diagram.vertices, out)?;
     out.write_all(b",\"edges\":")?;
@@ -48,6 +48,10 @@ pub fn write_diagram_to<W: std::io::Write>(
     if !diagram.cells.is_empty() {
         out.write_all(b",\"cells\":")?;
         write_list(&diagram.cells, out)?;
+    }
+    if !diagram.site_ids.is_empty() {
+        out.write_all(b",\"site_ids\":")?;
+        serde_json::to_writer(&mut *out, &diagram.site_ids)?;
     }
     out.write_all(b",\"stats\":")?;
     serde_json::to_writer(&mut *out, &diagram.stats)?;

@@ -7,6 +7,7 @@ pub mod geojson;
 pub mod json;
 mod read;
 pub mod svg;
+pub mod svg_in;
 pub mod wkt;
 
 pub use json::{read_diagram, write_diagram, write_scene};

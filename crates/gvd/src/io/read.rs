@@ -3,6 +3,7 @@
 //! into a validated [`Scene`] through [`SceneBuilder`] (the checks and messages of JSON).
 
 use crate::error::Error;
+use crate::geom::arc::Arc;
 use crate::geom::{Aabb, Point};
 use crate::scene::{Mode, Scene, SceneBuilder, Site, SiteKind};
 use std::path::Path;
@@ -16,24 +17,28 @@ pub enum Format {
     GeoJson,
     /// Well-known text: one geometry per line, or a collection.
     Wkt,
-    /// AutoCAD DXF, ASCII: LINE, ARC, CIRCLE, POINT, LWPOLYLINE and POLYLINE with bulges.
+    /// AutoCAD DXF, ASCII: LINE, ARC, CIRCLE, POINT, LWPOLYLINE and POLYLINE with bulges,
+    /// SPLINE, ELLIPSE.
     Dxf,
+    /// SVG drawings: lines, polylines, polygons, rects, circles, ellipses and paths.
+    Svg,
 }
 
 impl Format {
-    /// The format of a file name's extension (`.json`, `.geojson`, `.wkt`, `.dxf`, case
+    /// The format of a file name's extension (`.json`, `.geojson`, `.wkt`, `.dxf`, `.svg`, case
     /// ignored), if known.
     pub fn from_path(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         Format::from_name(&ext)
     }
-    /// The format called `name` (`json`, `geojson`, `wkt`, `dxf`).
+    /// The format called `name` (`json`, `geojson`, `wkt`, `dxf`, `svg`).
     pub fn from_name(name: &str) -> Option<Format> {
         match name {
             "json" => Some(Format::Json),
             "geojson" => Some(Format::GeoJson),
             "wkt" => Some(Format::Wkt),
             "dxf" => Some(Format::Dxf),
+            "svg" => Some(Format::Svg),
             _ => None,
         }
     }
@@ -67,6 +72,7 @@ pub fn read_scene(
         Format::GeoJson => super::geojson::read_scene(text()?, options),
         Format::Wkt => super::wkt::read_scene(text()?, options),
         Format::Dxf => super::dxf::read_scene(data, options),
+        Format::Svg => super::svg_in::read_scene(text()?, options),
     }
 }
 
@@ -211,4 +217,67 @@ pub(crate) fn build_scene(
         b.add(f.site).map_err(with_origin)?;
     }
     b.build().map_err(with_origin)
+}
+
+/// Moves the ends of straight sites within 1e-9 of the drawing's size of an arc's
+/// computed end `center + r (cos a, sin a)` onto it, so that the scene's shared-end rule
+/// holds for drawings whose arcs were given by their ends (DXF bulges, SVG paths).
+pub(crate) fn snap_to_arc_ends(found: &mut [Found]) {
+    let size = found
+        .iter()
+        .flat_map(|f| match &f.site.kind {
+            SiteKind::Segment { from, to } => vec![*from, *to],
+            SiteKind::Polyline { points } => points.clone(),
+            SiteKind::Arc { center, radius, .. } => {
+                vec![
+                    *center + Point::new(*radius, *radius),
+                    *center - Point::new(*radius, *radius),
+                ]
+            }
+            _ => Vec::new(),
+        })
+        .map(|p| p.x.abs().max(p.y.abs()))
+        .fold(0.0, f64::max);
+    let tol = 1e-9 * size.max(1e-300);
+    let mut ends: Vec<Point> = found
+        .iter()
+        .filter_map(|f| match f.site.kind {
+            SiteKind::Arc {
+                center,
+                radius,
+                start_angle,
+                end_angle,
+            } => Some(Arc::from_angles(center, radius, start_angle, end_angle).ends()),
+            _ => None,
+        })
+        .flatten()
+        .collect();
+    if ends.is_empty() {
+        return;
+    }
+    ends.sort_by(|a, b| a.x.total_cmp(&b.x));
+    let snap = |p: &mut Point| {
+        let from = ends.partition_point(|e| e.x < p.x - tol);
+        if let Some(e) = ends[from..]
+            .iter()
+            .take_while(|e| e.x <= p.x + tol)
+            .find(|e| e.dist(*p) <= tol)
+        {
+            *p = *e;
+        }
+    };
+    for f in found.iter_mut() {
+        match &mut f.site.kind {
+            SiteKind::Segment { from, to } => {
+                snap(from);
+                snap(to);
+            }
+            SiteKind::Polyline { points } => {
+                let last = points.len() - 1;
+                snap(&mut points[0]);
+                snap(&mut points[last]);
+            }
+            _ => {}
+        }
+    }
 }

@@ -76,6 +76,23 @@ impl Fmt {
     }
 }
 
+/// `text` with the five XML special characters escaped, for element content and
+/// attribute values.
+fn xml_escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 /// A light pastel colour for site `i` (hues spaced by the golden ratio).
 fn pastel(i: usize) -> String {
     let h = (i as f64 * 0.618_033_988_749_895).fract() * 6.0;
@@ -128,7 +145,12 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
             for ring in &c.rings {
                 f.path(&mut d, ring, true);
             }
-            let _ = writeln!(s, "<path d=\"{d}\" fill=\"{}\"/>", pastel(c.site));
+            // A cell of a site with an id carries its title (a tooltip in viewers).
+            let end = match scene.sites().get(c.site).and_then(|x| x.id.as_deref()) {
+                Some(id) => format!("><title>{}</title></path>", xml_escape(id)),
+                None => "/>".into(),
+            };
+            let _ = writeln!(s, "<path d=\"{d}\" fill=\"{}\"{end}", pastel(c.site));
         }
         s.push_str("</g>\n");
     }
@@ -385,6 +407,10 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
         let _ = writeln!(s, "<path d=\"{d}\"{extra}/>");
     };
     for site in scene.sites() {
+        // A site with an id is a group whose title names it (a tooltip in viewers).
+        if let Some(id) = &site.id {
+            let _ = writeln!(s, "<g><title>{}</title>", xml_escape(id));
+        }
         match &site.kind {
             SiteKind::Point { at, .. } => {
                 let _ = writeln!(
@@ -469,6 +495,9 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
                 }
             }
             SiteKind::Field { .. } | SiteKind::ImplicitField { .. } => {}
+        }
+        if site.id.is_some() {
+            s.push_str("</g>\n");
         }
     }
     s.push_str("</g>\n");

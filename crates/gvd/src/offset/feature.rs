@@ -15,7 +15,7 @@ use std::ops::Range;
 /// One feature: a point (a point site or a corner), a closed edge `[a, b]` or a closed
 /// circular arc.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Shape {
+pub(crate) enum Shape {
     Point(Point),
     /// An edge with the indices of the corner features at `a` and at `b`.
     Edge {
@@ -40,7 +40,7 @@ impl Shape {
     /// `|q − foot|` for an edge, the foot clamped to `[a, b]`; for an arc, the distance
     /// to its circle when the direction of `q` from the centre is within the span, else
     /// to the nearer end.
-    pub(super) fn distance(&self, q: Point) -> f64 {
+    pub(crate) fn distance(&self, q: Point) -> f64 {
         match *self {
             Shape::Point(p) => q.dist(p),
             Shape::Edge { a, b, .. } => segment_distance(q, a, b),
@@ -62,7 +62,7 @@ impl Shape {
         }
     }
 
-    fn bounds(&self) -> Aabb {
+    pub(crate) fn bounds(&self) -> Aabb {
         match *self {
             Shape::Point(p) => Aabb::new(p, p),
             Shape::Edge { a, b, .. } => Aabb::new(
@@ -95,8 +95,8 @@ struct SiteFeatures {
 }
 
 /// Every feature of a scene, in site order.
-pub(super) struct Features {
-    pub(super) shapes: Vec<Shape>,
+pub(crate) struct Features {
+    pub(crate) shapes: Vec<Shape>,
     /// Per feature, the feature that stands for it: the first point feature at the same
     /// place for a point (corners shared by sites, point sites on corners are one
     /// point, as in the diagram), itself otherwise.
@@ -112,7 +112,7 @@ impl Features {
     /// The features of Euclidean points, segments, arcs, polylines and polygons
     /// (numbered as `SCENE_FORMAT.md` numbers corners, edges and pieces); other site
     /// kinds, and full-circle arcs, are refused.
-    pub(super) fn of_scene(scene: &Scene) -> Result<Features, Error> {
+    pub(crate) fn of_scene(scene: &Scene) -> Result<Features, Error> {
         let mut f = Features {
             shapes: Vec::new(),
             canonical: Vec::new(),
@@ -220,6 +220,15 @@ impl Features {
             edges: 1,
             kind: FeatureKind::Piece,
         });
+    }
+
+    /// The site of each feature, in the features' order.
+    pub(crate) fn sites_of_shapes(&self) -> Vec<usize> {
+        let mut out = Vec::with_capacity(self.shapes.len());
+        for (i, s) in self.sites.iter().enumerate() {
+            out.resize(s.start + s.corners + s.edges, i);
+        }
+        out
     }
 
     /// The features a generator stands for: a whole site (all its features) or one

@@ -40,7 +40,7 @@
 //! points). Offsets are clipped to the domain, where the diagram is known.
 
 mod chain;
-mod feature;
+pub(crate) mod feature;
 mod level;
 pub(crate) mod model;
 

@@ -666,6 +666,10 @@ pub fn scene_voronoi(
     let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases)?;
     diagram.budget.check(scene.epsilon())?;
     phases.end("assembly");
+    if scene.mode() == Mode::Voronoi {
+        complex.cells = crate::complex::cells::site_cells(&complex, scene);
+        phases.end("cells");
+    }
     complex.stats.insert(
         "topology_overrides".into(),
         serde_json::json!(diagram.overrides),

@@ -132,8 +132,8 @@ fn drop_unused(
     VoronoiComplex {
         vertices: kept,
         edges,
-        cells: Vec::new(),
         stats,
+        ..Default::default()
     }
 }
 

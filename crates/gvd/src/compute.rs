@@ -65,6 +65,12 @@ pub struct IncrementalOptions {
     /// Give every edge its exact bisector in offset-parameter form
     /// ([`crate::complex::Edge::bisector`]).
     pub bisectors: bool,
+    /// Refuse segments (and polyline and polygon edges) that cross, overlap, repeat
+    /// one another or touch another's inside, and point sites inside a segment, naming
+    /// the two sites, instead of cutting them into pieces that meet at shared ends
+    /// (the default: the pieces of a site stay that site's generators, and `stats`
+    /// counts the cuts as `split_crossings`, `split_touches` and `merged_duplicates`).
+    pub strict: bool,
 }
 
 impl Default for Options {
@@ -128,9 +134,7 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
             });
         }
         (Engine::Auto | Engine::Incremental, None) if incremental::supports(scene) => {
-            return timed_incremental(|| {
-                incremental::scene_voronoi(scene, options.incremental.bisectors)
-            });
+            return timed_incremental(|| incremental::scene_voronoi(scene, &options.incremental));
         }
         (Engine::Incremental, None) => {
             let (site, kind) = scene

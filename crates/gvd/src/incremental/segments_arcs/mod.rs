@@ -11,8 +11,9 @@
 //! (`geometry.rs`).
 //!
 //! Segments must not cross or overlap, and no endpoint or point may lie inside another
-//! segment (touching at shared endpoints is fine): [`SegmentDiagram::new`] refuses such
-//! input, naming the two segments (see `crossings.rs`).
+//! segment (touching at shared endpoints is fine): `crossings.rs` finds such input,
+//! which callers refuse, naming the two segments, or cut into pieces that meet only at
+//! shared ends (`split.rs`).
 
 mod arc;
 mod arc_conflicts;
@@ -23,10 +24,12 @@ mod insert;
 pub(crate) mod joints;
 mod new_site;
 mod pieces;
+mod split;
 
 pub(crate) use arc_conflicts::{find_arc_conflict, ArcConflict, ArcSpec};
 pub(crate) use crossings::{find_conflict, Conflict, NEAR_TOUCH};
 pub(crate) use geometry::Gen;
+pub(crate) use split::{split_segments, Split};
 
 use super::points::PointDiagram;
 use crate::geom::{Aabb, Point};

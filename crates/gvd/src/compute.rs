@@ -153,6 +153,7 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         (Engine::Auto, None) => check_one_engine_takes_all(scene)?,
         _ => {}
     }
+    scene.refuse_repeated_segments()?;
     if options.engine == Engine::Subdivision && crate::site::polygonal::supports(scene) {
         let out = subdivision::soft::run_scene(
             scene,

@@ -101,6 +101,9 @@ struct Generators {
     /// polylines, arcs) that close up into loops: they bound regions too.
     loop_segments: Vec<u32>,
     loop_arcs: Vec<u32>,
+    /// The first point generator that is a computed crossing point (`split.rs`), if any:
+    /// they are numbered last.
+    first_crossing_point: Option<u32>,
     /// The site of `point_owner` and of `segment_owner`, compactly.
     point_site: Vec<u32>,
     segment_site: Vec<u32>,
@@ -142,6 +145,7 @@ impl GeneratorBuilder {
             rings: Vec::new(),
             loop_segments: Vec::new(),
             loop_arcs: Vec::new(),
+            first_crossing_point: None,
             point_site: Vec::new(),
             segment_site: Vec::new(),
         };
@@ -296,6 +300,9 @@ impl Generators {
     /// point inside an edge is also owned by that edge's site.
     fn apply_split(&mut self, cut: Split) {
         let first_new = self.points.len() as u32;
+        if !cut.new_points.is_empty() {
+            self.first_crossing_point = Some(first_new);
+        }
         let inside_owner = |seg: u32, owners: &[(usize, usize)]| {
             let (site, edge) = owners[seg as usize];
             (site, Part::Inside(edge))
@@ -765,7 +772,10 @@ pub fn scene_voronoi(scene: &Scene, options: &IncrementalOptions) -> Result<Voro
         return Err(arc_conflict_error(&g, c));
     }
     phases.end("input");
-    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain())?;
+    let mut diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain())?;
+    if let Some(first) = g.first_crossing_point {
+        diagram.snap_vertices_to_points(first, 0.25 * near);
+    }
     phases.end("construction");
     let mut complex = assemble(&g, scene, &diagram, options.bisectors, &mut phases)?;
     phases.end("assembly");

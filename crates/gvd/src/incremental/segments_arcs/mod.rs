@@ -32,6 +32,7 @@ pub(crate) use geometry::Gen;
 pub(crate) use split::{split_segments, Split};
 
 use super::points::PointDiagram;
+use crate::geom::grid::SparseGrid;
 use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range};
 use crate::Error;
@@ -167,6 +168,36 @@ impl SegmentDiagram {
             arcs: arc_gens,
             scale: pd.scale,
         })
+    }
+
+    /// Moves every vertex within `radius` (input units) of a point generator that the
+    /// caller numbers `from` or later (the crossing points of `split.rs`) onto that
+    /// point, with clearance 0. Those vertices are where pieces meeting at the point
+    /// tie, exactly at the point; the point lies within rounding of the lines of the
+    /// pieces, not on them, so the constructions put them a few ulps off, joined by
+    /// edges of that length. Once on the point, such edges have zero length and merge.
+    pub(crate) fn snap_vertices_to_points(&mut self, from: u32, radius: f64) {
+        let r = radius * self.scale;
+        let mut grid = SparseGrid::new(r);
+        for (s, &i) in self.point_id.iter().enumerate() {
+            if i != u32::MAX && i >= from {
+                grid.insert(self.points[s], ());
+            }
+        }
+        for v in self
+            .graph
+            .vertices
+            .iter_mut()
+            .filter(|v| v.alive && v.t <= r)
+        {
+            if let Some(&(p, ())) = grid
+                .near(v.at)
+                .min_by(|x, y| x.0.dist(v.at).total_cmp(&y.0.dist(v.at)))
+            {
+                v.at = p;
+                v.t = 0.0;
+            }
+        }
     }
 
     /// The generator as the caller numbers it: `Point(i)` is the caller's point `i`,

@@ -63,7 +63,7 @@ def main():
             d = (length * math.cos(ang), length * math.sin(ang))
             sites.append({"kind": "segment", "from": [c[0] - d[0], c[1] - d[1]],
                           "to": [c[0] + d[0], c[1] + d[1]]})
-    scene = {"domain": [0, 0, 1, 1], "epsilon": 1e-3 if n <= 1000 else 2e-4,
+    scene = {"domain": [0, 0, 1, 1], "epsilon": 1e-3,
              "mode": "voronoi", "sites": sites,
              "source": f"scripts/gen_crossing_segments.py {n} {seed}" + (" --no-crossings" if plain else "")}
     json.dump(scene, open(out, "w"))

@@ -755,6 +755,10 @@ pub fn scene_voronoi(scene: &Scene, options: &IncrementalOptions) -> Result<Voro
     }
     let mut phases = Phases::default();
     let mut g = Generators::of(scene);
+    let near = NEAR_TOUCH * scene.domain().longest_side();
+    // (no cuts in `medial_axis` mode: its loops are those of the input)
+    let cuts = cut_or_refuse(&mut g, scene, options.strict, near)?;
+    g.finish(scene);
     let bounds_nothing = g.rings.is_empty() && g.loop_segments.is_empty() && g.loop_arcs.is_empty();
     if scene.mode() == Mode::MedialAxis && bounds_nothing {
         return Err(Error::scene(
@@ -764,9 +768,6 @@ pub fn scene_voronoi(scene: &Scene, options: &IncrementalOptions) -> Result<Voro
              ends must meet exactly): the medial axis is empty; use mode 'voronoi' or 'complex'",
         ));
     }
-    let near = NEAR_TOUCH * scene.domain().longest_side();
-    let cuts = cut_or_refuse(&mut g, scene, options.strict, near)?;
-    g.finish(scene);
     let scale = scene.domain().longest_side();
     if let Some(c) = find_arc_conflict(&g.points, &g.segments, &g.arcs, &g.lonely, scale) {
         return Err(arc_conflict_error(&g, c));

@@ -108,6 +108,10 @@ struct ComputeArgs {
     /// pieces in Held's offset-parameter form with their clearance ranges.
     #[arg(long)]
     bisectors: bool,
+    /// Refuse segments that cross, overlap, repeat or touch another's inside, and
+    /// points on segments (naming the sites), instead of splitting them there.
+    #[arg(long)]
+    strict: bool,
     /// Soft-predicate engine (segments, polylines, polygons with `--engine
     /// subdivision`): no zone filter, every feature within reach belongs to a box.
     #[arg(long)]
@@ -282,6 +286,7 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
         },
         incremental: gvd::IncrementalOptions {
             bisectors: args.bisectors,
+            strict: args.strict,
         },
         control,
     };
@@ -299,6 +304,9 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
         stat(d, "uncertified_boxes"),
         seconds.unwrap_or(0.0)
     );
+    if let Some(cuts) = split_summary(d) {
+        eprintln!("gvd: {cuts} (--strict refuses such input)");
+    }
     if let Some(asked) = d.stats.get("epsilon_floored_from").and_then(|v| v.as_f64()) {
         eprintln!(
             "gvd: warning: epsilon {asked:e} is finer than the subdivision resolves in this domain; the diagram is at resolution {}",
@@ -456,6 +464,20 @@ fn clip(s: &str) -> String {
         Some((k, _)) => format!("{}… ({} characters cut)", &s[..k], s[k..].chars().count()),
         None => s.to_string(),
     }
+}
+
+/// "split 12 crossings, 3 touches, merged 2 repeated segment pieces" from the stats of
+/// the segment engine's cuts, if it made any.
+fn split_summary(d: &VoronoiComplex) -> Option<String> {
+    let n = |key: &str| d.stats.get(key).and_then(|v| v.as_u64());
+    let (c, t, m) = (
+        n("split_crossings")?,
+        n("split_touches")?,
+        n("merged_duplicates")?,
+    );
+    Some(format!(
+        "split segments at {c} crossings and {t} touches, merged {m} repeated segment pieces"
+    ))
 }
 
 fn stat(d: &VoronoiComplex, key: &str) -> String {

@@ -63,7 +63,10 @@ fn compute(
             },
             ..Default::default()
         },
-        incremental: gvd::IncrementalOptions { bisectors },
+        incremental: gvd::IncrementalOptions {
+            bisectors,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let scene = scene.scene()?;

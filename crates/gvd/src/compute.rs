@@ -69,6 +69,12 @@ pub struct IncrementalOptions {
     /// Give every edge its exact bisector in offset-parameter form
     /// ([`crate::complex::Edge::bisector`]).
     pub bisectors: bool,
+    /// Refuse segments (and polyline and polygon edges) that cross, overlap, repeat
+    /// one another or touch another's inside, and point sites inside a segment, naming
+    /// the two sites, instead of cutting them into pieces that meet at shared ends
+    /// (the default: the pieces of a site stay that site's generators, and `stats`
+    /// counts the cuts as `split_crossings`, `split_touches` and `merged_duplicates`).
+    pub strict: bool,
 }
 
 impl Default for Options {
@@ -148,7 +154,7 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
             return timed_incremental(|| {
                 incremental::scene_voronoi(
                     scene,
-                    options.incremental.bisectors,
+                    &options.incremental,
                     &options.subdivision.limits,
                     &watch,
                 )
@@ -171,6 +177,7 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
         (Engine::Auto, None) => check_one_engine_takes_all(scene)?,
         _ => {}
     }
+    scene.refuse_repeated_segments()?;
     if options.engine == Engine::Subdivision && crate::site::polygonal::supports(scene) {
         let out = subdivision::soft::run_scene(
             scene,

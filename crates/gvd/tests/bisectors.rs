@@ -24,7 +24,10 @@ fn scene(rel: &str) -> Scene {
 fn with_bisectors(s: &Scene) -> VoronoiComplex {
     let options = Options {
         engine: Engine::Incremental,
-        incremental: gvd::IncrementalOptions { bisectors: true },
+        incremental: gvd::IncrementalOptions {
+            bisectors: true,
+            ..Default::default()
+        },
         ..Default::default()
     };
     gvd::compute(s, &options).unwrap()

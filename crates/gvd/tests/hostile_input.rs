@@ -57,7 +57,7 @@ fn identical_circles_and_fields_are_duplicates() {
         assert_eq!((site, f), (1, field), "{name}: {e}");
         assert!(message.contains("identical to site 0"), "{e}");
     }
-    // the same polynomial written otherwise, and the same segment, are duplicates too
+    // the same polynomial written otherwise is a duplicate too
     let fields = r#"{"domain": [-2, -2, 2, 2], "sites": [
         {"kind": "field", "equation": "x^2 + y^2"}, {"kind": "point", "at": [1, 1]},
         {"kind": "field", "equation": "y^2+x*x"}]}"#;
@@ -65,7 +65,17 @@ fn identical_circles_and_fields_are_duplicates() {
     let segments = r#"{"domain": [-2, -2, 2, 2], "sites": [
         {"kind": "segment", "from": [0, 0], "to": [1, 0]},
         {"kind": "segment", "from": [0, 0], "to": [1, 0]}]}"#;
-    assert!(Scene::from_json(segments).is_err());
+    // the same segment twice: the segment engine merges it, the subdivision engine
+    // refuses it as a duplicate
+    let twice = Scene::from_json(segments).unwrap();
+    let merged = compute(&twice, &Options::default()).unwrap();
+    assert_eq!(merged.stats["merged_duplicates"], 1);
+    let subdivision = Options {
+        engine: gvd::Engine::Subdivision,
+        ..Default::default()
+    };
+    let e = compute(&twice, &subdivision).unwrap_err();
+    assert!(e.to_string().contains("identical to site 0"), "{e}");
     // equal radii at different centres are not
     let circles = r#"{"domain": [-2, -2, 2, 2], "sites": [
         {"kind": "circle", "center": [0, 0], "radius": 0.5},

@@ -154,7 +154,19 @@ fn point_between_parallel_segments() {
 }
 
 #[test]
-fn crossing_and_overlapping_segments_are_refused_naming_both() {
+fn crossing_and_overlapping_segments_are_refused_naming_both_when_strict() {
+    // (by default they are split: tests/split_crossings.rs)
+    let incremental = |s: &Scene| {
+        let options = Options {
+            engine: Engine::Incremental,
+            incremental: gvd::IncrementalOptions {
+                strict: true,
+                ..Default::default()
+            },
+            ..Options::default()
+        };
+        compute(s, &options)
+    };
     let crossing = json_scene(
         "voronoi",
         r#"{"kind": "point", "at": [1.5, 1.5]},

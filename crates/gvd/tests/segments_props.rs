@@ -501,11 +501,18 @@ proptest! {
         prop_assert!(check_scene(&sc).is_ok(), "{}", check_scene(&sc).unwrap_err());
     }
 
-    /// A T-junction that really touches is refused, naming both sites.
+    /// A T-junction that really touches is split there and computed; with `strict` it
+    /// is refused, naming both sites.
     #[test]
-    fn touching_t_junction_is_a_conflict(x in -0.9f64..0.4) {
+    fn touching_t_junction_is_split_or_refused_when_strict(x in -0.9f64..0.4) {
         let sc = near_touching_scene(0, 0.0, x);
-        let r = incremental(&sc);
+        prop_assert!(check_scene(&sc).is_ok(), "{}", check_scene(&sc).unwrap_err());
+        let strict = Options {
+            engine: Engine::Incremental,
+            incremental: gvd::IncrementalOptions { strict: true, ..Default::default() },
+            ..Options::default()
+        };
+        let r = compute(&sc, &strict);
         prop_assert!(matches!(r, Err(Error::Conflict { site: 0, other: 1, .. })), "{:?}", r.err());
     }
 }

@@ -338,6 +338,13 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// Refuses a segment site identical to an earlier one, as the scene refuses other
+    /// repeated sites: for the engines that do not merge repeated segments (the
+    /// segment engine does).
+    pub(crate) fn refuse_repeated_segments(&self) -> Result<(), Error> {
+        validate::duplicate_site(&self.sites, true)
+    }
+
     /// Checks and builds a scene. Refusals name the field (`domain`, `epsilon`) or the
     /// site index and its field, as for JSON input.
     pub fn new(domain: Aabb, epsilon: f64, mode: Mode, sites: Vec<Site>) -> Result<Scene, Error> {
@@ -448,7 +455,7 @@ impl SceneBuilder {
         let epsilon = self
             .epsilon
             .unwrap_or_else(|| Scene::default_epsilon(&self.domain));
-        validate::duplicate_site(&self.sites)?;
+        validate::duplicate_site(&self.sites, false)?;
         validate::check_precision(&self.domain, epsilon, &self.sites)?;
         validate::overlapping_ovals(&self.sites)?;
         Ok(Scene {

@@ -200,11 +200,12 @@ pub(super) fn duplicate_point(sites: &[Site]) -> Option<(usize, usize)> {
     first
 }
 
-/// The first site (not a point: [`duplicate_point`] takes those) identical to an
-/// earlier one: same kind and same data (equations compared as polynomials, so
-/// `x^2+y^2` repeats `y^2 + x^2`). Two identical sites tie everywhere: their bisector
-/// is the whole plane.
-pub(crate) fn duplicate_site(sites: &[Site]) -> Result<(), Error> {
+/// The first site (not a point: [`duplicate_point`] takes those; segments only with
+/// `segments`) identical to an earlier one: same kind and same data (equations
+/// compared as polynomials, so `x^2+y^2` repeats `y^2 + x^2`). Two identical sites tie
+/// everywhere: their bisector is the whole plane. The segment engine merges repeated
+/// segments (their common points may be named by either), the other engines do not.
+pub(crate) fn duplicate_site(sites: &[Site], segments: bool) -> Result<(), Error> {
     use std::hash::{Hash, Hasher};
     let key = |kind: &SiteKind| {
         let mut h = std::hash::DefaultHasher::new();
@@ -220,7 +221,11 @@ pub(crate) fn duplicate_site(sites: &[Site]) -> Result<(), Error> {
     let mut keyed: Vec<(u64, usize)> = sites
         .iter()
         .enumerate()
-        .filter(|(_, s)| !matches!(s.kind, SiteKind::Point { .. }))
+        .filter(|(_, s)| match s.kind {
+            SiteKind::Point { .. } => false,
+            SiteKind::Segment { .. } => segments,
+            _ => true,
+        })
         .map(|(i, s)| (key(&s.kind), i))
         .collect();
     keyed.sort_unstable();

@@ -92,21 +92,29 @@ impl Checker<'_> {
 
     /// `g` and the generators that may name its region at `x` instead: where `g`'s foot
     /// from `x` is a point that other sites share (see [`generators::SharedPoints`]),
-    /// their generators there that tie with `g` at `x`.
+    /// their generators there that tie with `g` at `x`; and the generators of other
+    /// sites through that same foot, tied with `g` at `x` (segments that overlap or
+    /// repeat one another, a crossing: their common points, like shared ends, may be
+    /// named by any of them).
     pub(super) fn owners(&self, g: usize, x: Point) -> Vec<usize> {
         let mut out = vec![g];
         let Some(foot) = self.fields[g].foot(x) else {
             return out;
         };
         let shared = &self.gens.shared;
-        let owners = shared.owners_at(foot);
-        if owners.is_empty() {
-            return out;
-        }
         let (site, dg) = (self.gens.labels[g].site(), self.fields[g].value(x));
-        for (h, other) in owners {
-            let tie = (self.fields[h].value(x) - dg).abs() <= 2.0 * shared.radius();
+        let tol = 2.0 * shared.radius();
+        for (h, other) in shared.owners_at(foot) {
+            let tie = (self.fields[h].value(x) - dg).abs() <= tol;
             if other != site && tie && !out.contains(&h) {
+                out.push(h);
+            }
+        }
+        for h in self.near.within(x, dg + tol) {
+            let through = self.fields[h]
+                .foot(x)
+                .is_some_and(|f| f.dist(foot) <= shared.radius());
+            if through && self.gens.labels[h].site() != site && !out.contains(&h) {
                 out.push(h);
             }
         }

@@ -137,4 +137,27 @@ impl<'a> Nearest<'a> {
         best.gen = self.gens.end_corner(best.gen, q, self.tiny);
         Some(best)
     }
+
+    /// Every generator whose field at `q` is at most `value` (outside closed sites
+    /// too): the generators tied with one of field `value` there, and nearer ones.
+    pub(super) fn within(&self, q: Point, value: f64) -> Vec<usize> {
+        let fields = &self.gens.fields;
+        let mut out: Vec<usize> = Vec::new();
+        let mut consider = |i: usize| {
+            if fields[i].value(q) <= value {
+                out.push(i);
+            }
+        };
+        self.always.iter().for_each(|&i| consider(i));
+        let c = self.grid.cell_of(q);
+        let (nx, ny) = self.grid.dims();
+        for ring in 0..=nx.max(ny) {
+            self.grid
+                .for_each_in_ring(c, ring, |k| consider(self.anchored[k as usize]));
+            if self.ring_bound[ring] > value {
+                break;
+            }
+        }
+        out
+    }
 }

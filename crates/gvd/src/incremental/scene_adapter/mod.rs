@@ -23,10 +23,11 @@ mod phases;
 
 use super::bisector_form::{self, OffsetGen};
 use super::segments_arcs::{
-    find_arc_conflict, find_conflict, ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram,
-    NEAR_TOUCH,
+    find_arc_conflict, find_conflict, split_segments, ArcConflict, ArcSpec, Conflict, Gen,
+    SegmentDiagram, Split, NEAR_TOUCH,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
+use crate::compute::IncrementalOptions;
 use crate::control::Watch;
 use crate::geom::arc::{partial_sweep, ray_crosses_odd};
 use crate::geom::grid::SparseGrid;
@@ -65,15 +66,29 @@ pub fn supports_site(kind: &SiteKind) -> bool {
     }
 }
 
+/// What a point generator is of a site.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Part {
+    /// The site is this point.
+    Point,
+    /// Corner `k` of the site (a segment's end, an arc's end, a chain's corner).
+    Corner(usize),
+    /// A point inside edge `k` of the site where it was cut (`split.rs`).
+    Inside(usize),
+}
+
+/// A site and what a point generator is of it.
+type Owner = (usize, Part);
+
 /// The generators of a scene and what they stand for.
 struct Generators {
     points: Vec<Point>,
-    /// Per point generator: (site, corner index, or `None` for a point site), the
-    /// first site in the scene that has the point, which names it on edges.
-    point_owner: Vec<(usize, Option<usize>)>,
+    /// Per point generator: (site, what the point is of it), the first site in the
+    /// scene that has the point, which names it on edges.
+    point_owner: Vec<Owner>,
     /// The other sites' corners and point sites at a shared point (vertices there list
     /// them all: they are one point).
-    also: FxHashMap<u32, Vec<(usize, Option<usize>)>>,
+    also: FxHashMap<u32, Vec<Owner>>,
     segments: Vec<[u32; 2]>,
     /// Per segment generator: (site, edge index).
     segment_owner: Vec<(usize, usize)>,
@@ -88,6 +103,9 @@ struct Generators {
     /// polylines, arcs) that close up into loops: they bound regions too.
     loop_segments: Vec<u32>,
     loop_arcs: Vec<u32>,
+    /// The first point generator that is a computed crossing point (`split.rs`), if any:
+    /// they are numbered last.
+    first_crossing_point: Option<u32>,
     /// The site of `point_owner` and of `segment_owner`, compactly.
     point_site: Vec<u32>,
     segment_site: Vec<u32>,
@@ -129,6 +147,7 @@ impl GeneratorBuilder {
             rings: Vec::new(),
             loop_segments: Vec::new(),
             loop_arcs: Vec::new(),
+            first_crossing_point: None,
             point_site: Vec::new(),
             segment_site: Vec::new(),
         };
@@ -142,7 +161,7 @@ impl GeneratorBuilder {
     }
 
     /// The point generator at `p` (a new one, or `owner` shares an existing one).
-    fn point(&mut self, p: Point, owner: (usize, Option<usize>)) -> u32 {
+    fn point(&mut self, p: Point, owner: Owner) -> u32 {
         // −0.0 and 0.0 are the same point.
         let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
         match self.index.get(&key) {
@@ -166,7 +185,7 @@ impl GeneratorBuilder {
         let mut ids = std::mem::take(&mut self.ids);
         ids.clear();
         for (k, &p) in pts.iter().enumerate() {
-            ids.push(self.point(p, (site, Some(corner0 + k))));
+            ids.push(self.point(p, (site, Part::Corner(corner0 + k))));
         }
         let n = ids.len();
         let edges = if closed { n } else { n - 1 };
@@ -194,11 +213,11 @@ impl GeneratorBuilder {
                 let end = arc.end_point(k);
                 match snap.find(end) {
                     Some(id) => {
-                        self.g.share(id, (i, Some(k)));
+                        self.g.share(id, (i, Part::Corner(k)));
                         id
                     }
                     None => {
-                        let id = self.point(end, (i, Some(k)));
+                        let id = self.point(end, (i, Part::Corner(k)));
                         snap.insert(end, id);
                         id
                     }
@@ -214,7 +233,7 @@ impl GeneratorBuilder {
     fn point_sites(&mut self, sites: Vec<(usize, Point)>) {
         for (i, at) in sites {
             let before = self.g.points.len();
-            let id = self.point(at, (i, None));
+            let id = self.point(at, (i, Part::Point));
             if id as usize == before {
                 self.g.lonely.push(id);
             }
@@ -265,13 +284,56 @@ impl Generators {
         }
         b.arcs(arc_sites, 1e-12 * scene.domain().longest_side());
         b.point_sites(points_sites);
-        let mut g = b.g;
-        g.point_site = g.point_owner.iter().map(|o| o.0 as u32).collect();
-        g.segment_site = g.segment_owner.iter().map(|o| o.0 as u32).collect();
+        b.g
+    }
+
+    /// The compact site tables and, in `medial_axis` mode, the loops: once the
+    /// generators are final (after any cuts).
+    fn finish(&mut self, scene: &Scene) {
+        self.point_site = self.point_owner.iter().map(|o| o.0 as u32).collect();
+        self.segment_site = self.segment_owner.iter().map(|o| o.0 as u32).collect();
         if scene.mode() == Mode::MedialAxis {
-            g.find_loops(scene);
+            self.find_loops(scene);
         }
-        g
+    }
+
+    /// The segments replaced by their pieces `cut`: the computed crossing points become
+    /// point generators, named by the first site whose edge they are inside, and every
+    /// point inside an edge is also owned by that edge's site.
+    fn apply_split(&mut self, cut: Split) {
+        let first_new = self.points.len() as u32;
+        if !cut.new_points.is_empty() {
+            self.first_crossing_point = Some(first_new);
+        }
+        let inside_owner = |seg: u32, owners: &[(usize, usize)]| {
+            let (site, edge) = owners[seg as usize];
+            (site, Part::Inside(edge))
+        };
+        self.points.extend(&cut.new_points);
+        let mut named = vec![false; cut.new_points.len()];
+        // `inside` is sorted by point, then segment: a new point's first entry is the
+        // earliest segment, of the earliest site.
+        self.point_owner
+            .resize(self.points.len(), (usize::MAX, Part::Point));
+        for &(p, seg) in &cut.inside {
+            let owner = inside_owner(seg, &self.segment_owner);
+            match p.checked_sub(first_new) {
+                Some(k) if !named[k as usize] => {
+                    named[k as usize] = true;
+                    self.point_owner[p as usize] = owner;
+                }
+                _ => self.share(p, owner),
+            }
+        }
+        // a point site that cut a segment is an end of its pieces now
+        self.lonely
+            .retain(|p| cut.inside.binary_search_by_key(p, |&(q, _)| q).is_err());
+        self.segment_owner = cut
+            .origin
+            .iter()
+            .map(|&o| self.segment_owner[o as usize])
+            .collect();
+        self.segments = cut.pieces;
     }
 
     /// The segment and arc generators of open sites that lie on closed loops: the
@@ -328,7 +390,7 @@ impl Generators {
     }
 
     /// Another owner of point `p`: it names the point if its site comes first.
-    fn share(&mut self, p: u32, owner: (usize, Option<usize>)) {
+    fn share(&mut self, p: u32, owner: Owner) {
         let name = &mut self.point_owner[p as usize];
         if *name == owner {
             return;
@@ -526,15 +588,19 @@ impl Generators {
     }
 }
 
-/// The label of a point owned by `(site, corner)` (`None`: a point site).
-fn owner_label((site, corner): (usize, Option<usize>), mode: Mode) -> Generator {
-    match (mode, corner) {
-        (Mode::Voronoi, _) | (_, None) => Generator::Site(site),
-        (_, Some(k)) => Generator::Feature {
-            site,
-            feature: FeatureKind::Corner,
-            index: k,
-        },
+/// The label of a point owned by `(site, part)`: in `complex` and `medial_axis` modes a
+/// corner is a corner feature and a cut inside an edge is that edge (the point lies on
+/// it), and a point site stays its site.
+fn owner_label((site, part): Owner, mode: Mode) -> Generator {
+    let feature = |feature, index| Generator::Feature {
+        site,
+        feature,
+        index,
+    };
+    match (mode, part) {
+        (Mode::Voronoi, _) | (_, Part::Point) => Generator::Site(site),
+        (_, Part::Corner(k)) => feature(FeatureKind::Corner, k),
+        (_, Part::Inside(k)) => feature(FeatureKind::Edge, k),
     }
 }
 
@@ -569,6 +635,58 @@ impl Snap {
     }
 }
 
+/// Cuts the segments of `g` where they cross, overlap or touch inside (`split.rs`),
+/// returning how many crossing points, cuts at input points and merged pieces that
+/// took; or, with `strict` and in `medial_axis` mode (where the regions that crossing
+/// sites bound are not defined), refuses the first such contact, naming its sites.
+/// Polygons of different sites that cross are refused too (their insides overlap).
+fn cut_or_refuse(
+    g: &mut Generators,
+    scene: &Scene,
+    strict: bool,
+    near: f64,
+) -> Result<Option<[usize; 3]>, Error> {
+    let medial = scene.mode() == Mode::MedialAxis;
+    if strict || medial {
+        let why = if strict {
+            " (strict: such input is refused, not split)"
+        } else {
+            " (in mode 'medial_axis' segments are not split there: the regions that \
+             crossing or overlapping sites bound are not defined; use mode 'voronoi' or \
+             'complex')"
+        };
+        return match find_conflict(&g.points, &g.segments, &g.lonely, near) {
+            Some(c) => Err(conflict_error(g, c, why)),
+            None => Ok(None),
+        };
+    }
+    let cut = split_segments(&g.points, &g.segments, &g.lonely, near, 0.25 * near)
+        .map_err(|c| conflict_error(g, c, ""))?;
+    let polygon = |seg: u32| {
+        let site = g.segment_owner[seg as usize].0;
+        matches!(scene.sites()[site].kind, SiteKind::Polygon { .. }).then_some(site)
+    };
+    let first_new = g.points.len() as u32;
+    for run in cut.inside.chunk_by(|a, b| a.0 == b.0) {
+        if run[0].0 < first_new {
+            continue; // a touch, not a crossing
+        }
+        let mut sites = run.iter().filter_map(|&(_, seg)| polygon(seg));
+        if let Some(a) = sites.next() {
+            if let Some(b) = sites.find(|&b| b != a) {
+                return Err(Error::Conflict {
+                    site: a.min(b),
+                    other: a.max(b),
+                    message: "polygons cross (their insides overlap)".into(),
+                });
+            }
+        }
+    }
+    let counts = [cut.crossings, cut.touches, cut.merged];
+    g.apply_split(cut);
+    Ok(Some(counts))
+}
+
 fn arc_conflict_error(g: &Generators, c: ArcConflict) -> Error {
     let (a, b, what) = match c {
         ArcConflict::Segment(i, j) => (
@@ -590,7 +708,8 @@ fn arc_conflict_error(g: &Generators, c: ArcConflict) -> Error {
     }
 }
 
-fn conflict_error(g: &Generators, c: Conflict) -> Error {
+/// The refusal of conflict `c`, its message followed by `why` (why it was not cut).
+fn conflict_error(g: &Generators, c: Conflict, why: &str) -> Error {
     let seg_site = |s: usize| g.segment_owner[s].0;
     let (a, b, what) = match c {
         Conflict::Cross(i, j) => (seg_site(i), seg_site(j), "segments cross"),
@@ -614,9 +733,9 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
         ),
     };
     let message = if a == b {
-        format!("{what} within site {a}")
+        format!("{what} within site {a}{why}")
     } else {
-        what.to_string()
+        format!("{what}{why}")
     };
     Error::Conflict {
         site: a.min(b),
@@ -626,22 +745,29 @@ fn conflict_error(g: &Generators, c: Conflict) -> Error {
 }
 
 /// The diagram of a scene of Euclidean points, segments, arcs, polylines and polygons;
-/// with `bisectors`, every edge also carries its exact bisector in offset-parameter
-/// form ([`Edge::bisector`]). `watch` stops the construction early; the polylines
-/// drawn hold at most the points `limits` allow ([`Error::Budget`] beyond).
+/// with `options.bisectors`, every edge also carries its exact bisector in
+/// offset-parameter form ([`Edge::bisector`]). Segments and chain edges that cross,
+/// overlap or touch inside are cut into pieces first (`split.rs`; counted in `stats`),
+/// except with `options.strict` and in `medial_axis` mode, where they are refused.
+/// `watch` stops the construction early; the polylines drawn hold at most the points
+/// `limits` allow ([`Error::Budget`] beyond).
 pub fn scene_voronoi(
     scene: &Scene,
-    bisectors: bool,
+    options: &IncrementalOptions,
     limits: &Limits,
     watch: &Watch,
 ) -> Result<VoronoiComplex, Error> {
     if let Some(s) = scene.unit_scale() {
-        let mut c = scene_voronoi(&scene.scaled(s), bisectors, limits, watch)?;
+        let mut c = scene_voronoi(&scene.scaled(s), options, limits, watch)?;
         c.scale(1.0 / s);
         return Ok(c);
     }
     let mut phases = Phases::default();
-    let g = Generators::of(scene);
+    let mut g = Generators::of(scene);
+    let near = NEAR_TOUCH * scene.domain().longest_side();
+    // (no cuts in `medial_axis` mode: its loops are those of the input)
+    let cuts = cut_or_refuse(&mut g, scene, options.strict, near)?;
+    g.finish(scene);
     let bounds_nothing = g.rings.is_empty() && g.loop_segments.is_empty() && g.loop_arcs.is_empty();
     if scene.mode() == Mode::MedialAxis && bounds_nothing {
         return Err(Error::scene(
@@ -651,19 +777,18 @@ pub fn scene_voronoi(
              ends must meet exactly): the medial axis is empty; use mode 'voronoi' or 'complex'",
         ));
     }
-    let near = NEAR_TOUCH * scene.domain().longest_side();
-    if let Some(c) = find_conflict(&g.points, &g.segments, &g.lonely, near) {
-        return Err(conflict_error(&g, c));
-    }
     let scale = scene.domain().longest_side();
     if let Some(c) = find_arc_conflict(&g.points, &g.segments, &g.arcs, &g.lonely, scale) {
         return Err(arc_conflict_error(&g, c));
     }
     phases.end("input");
     let budget = Budget::new(limits, scene.sites().len(), watch);
-    let diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain(), budget)?;
+    let mut diagram = SegmentDiagram::new(&g.points, &g.segments, &g.arcs, scene.domain(), budget)?;
+    if let Some(first) = g.first_crossing_point {
+        diagram.snap_vertices_to_points(first, 0.25 * near);
+    }
     phases.end("construction");
-    let mut complex = assemble(&g, scene, &diagram, bisectors, &mut phases)?;
+    let mut complex = assemble(&g, scene, &diagram, options.bisectors, &mut phases)?;
     diagram.budget.check(scene.epsilon())?;
     phases.end("assembly");
     if scene.mode() == Mode::Voronoi {
@@ -674,6 +799,15 @@ pub fn scene_voronoi(
         "topology_overrides".into(),
         serde_json::json!(diagram.overrides),
     );
+    if let Some([crossings, touches, merged]) = cuts.filter(|c| c.iter().any(|&n| n > 0)) {
+        for (key, n) in [
+            ("split_crossings", crossings),
+            ("split_touches", touches),
+            ("merged_duplicates", merged),
+        ] {
+            complex.stats.insert(key.into(), serde_json::json!(n));
+        }
+    }
     phases.record(&mut complex.stats);
     Ok(complex)
 }

@@ -30,14 +30,14 @@ pub(crate) const NEAR_TOUCH: f64 = 4e-12;
 
 /// Whether `p` lies within `near` of the inside of segment `ab`, its foot strictly
 /// between `a` and `b`.
-fn nearly_inside(p: Point, a: Point, b: Point, near: f64) -> bool {
+pub(super) fn nearly_inside(p: Point, a: Point, b: Point, near: f64) -> bool {
     let d = b - a;
     let t = (p - a).dot(d) / d.dot(d);
     t > 0.0 && t < 1.0 && p.dist(a + d * t) <= near
 }
 
 /// Whether `c`, collinear with `a` and `b`, lies strictly between them.
-fn strictly_between(a: Point, b: Point, c: Point) -> bool {
+pub(super) fn strictly_between(a: Point, b: Point, c: Point) -> bool {
     let inside = |lo: f64, hi: f64, v: f64| lo.min(hi) < v && v < lo.max(hi);
     if a.x != b.x {
         inside(a.x, b.x, c.x)
@@ -107,6 +107,33 @@ fn segment_pair(
     None
 }
 
+/// A uniform grid over the boxes of `segments` (padded by `near`, so that an end that
+/// nearly touches a segment shares a cell with it) and the segments' extent: cells
+/// about as long as the average segment, at most ~4 per segment.
+pub(super) fn segment_grid(
+    points: &[Point],
+    segments: &[[u32; 2]],
+    near: f64,
+) -> (BucketGrid, Aabb) {
+    let ends = |k: usize| segments[k].map(|e| points[e as usize]);
+    let extent = bounds_of_points(segments.iter().flatten().map(|&e| points[e as usize]));
+    let total: f64 = (0..segments.len())
+        .map(|k| ends(k)[0].dist(ends(k)[1]))
+        .sum();
+    let n = segments.len() as f64;
+    let ext = extent.longest_side().max(f64::MIN_POSITIVE);
+    let side = (total / n).max(ext / (2.0 * n).sqrt()).max(ext / 4096.0);
+    let grid = BucketGrid::new(extent, side, usize::MAX, segments.len(), |k| {
+        let [pa, pb] = ends(k);
+        let pad = Point::new(near, near);
+        Aabb::new(
+            Point::new(pa.x.min(pb.x), pa.y.min(pb.y)) - pad,
+            Point::new(pa.x.max(pb.x), pa.y.max(pb.y)) + pad,
+        )
+    });
+    (grid, extent)
+}
+
 /// The first conflict among `segments` (pairs of indices into `points`, which are
 /// distinct) and the isolated points `lonely`, if any; ends and points within `near` of
 /// a segment's inside are conflicts too.
@@ -119,24 +146,7 @@ pub(crate) fn find_conflict(
     if segments.is_empty() {
         return None;
     }
-    let ends = |k: usize| segments[k].map(|e| points[e as usize]);
-    let extent = bounds_of_points(segments.iter().flatten().map(|&e| points[e as usize]));
-    let total: f64 = (0..segments.len())
-        .map(|k| ends(k)[0].dist(ends(k)[1]))
-        .sum();
-    // Cells about as long as the average segment, at most ~4 per segment.
-    let n = segments.len() as f64;
-    let ext = extent.longest_side().max(f64::MIN_POSITIVE);
-    let side = (total / n).max(ext / (2.0 * n).sqrt()).max(ext / 4096.0);
-    // boxes padded by `near`, so that an end that nearly touches shares a cell
-    let grid = BucketGrid::new(extent, side, usize::MAX, segments.len(), |k| {
-        let [pa, pb] = ends(k);
-        let pad = Point::new(near, near);
-        Aabb::new(
-            Point::new(pa.x.min(pb.x), pa.y.min(pb.y)) - pad,
-            Point::new(pa.x.max(pb.x), pa.y.max(pb.y)) + pad,
-        )
-    });
+    let (grid, extent) = segment_grid(points, segments, near);
     for list in grid.buckets() {
         for (x, &i) in list.iter().enumerate() {
             for &j in &list[x + 1..] {

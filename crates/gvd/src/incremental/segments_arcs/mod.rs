@@ -11,8 +11,9 @@
 //! (`geometry.rs`).
 //!
 //! Segments must not cross or overlap, and no endpoint or point may lie inside another
-//! segment (touching at shared endpoints is fine): [`SegmentDiagram::new`] refuses such
-//! input, naming the two segments (see `crossings.rs`).
+//! segment (touching at shared endpoints is fine): `crossings.rs` finds such input,
+//! which callers refuse, naming the two segments, or cut into pieces that meet only at
+//! shared ends (`split.rs`).
 
 mod arc;
 mod arc_conflicts;
@@ -23,12 +24,15 @@ mod insert;
 pub(crate) mod joints;
 mod new_site;
 mod pieces;
+mod split;
 
 pub(crate) use arc_conflicts::{find_arc_conflict, ArcConflict, ArcSpec};
 pub(crate) use crossings::{find_conflict, Conflict, NEAR_TOUCH};
 pub(crate) use geometry::Gen;
+pub(crate) use split::{split_segments, Split};
 
 use super::points::PointDiagram;
+use crate::geom::grid::SparseGrid;
 use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range};
 use crate::subdivision::Budget;
@@ -179,6 +183,36 @@ impl SegmentDiagram {
             scale: pd.scale,
             budget,
         })
+    }
+
+    /// Moves every vertex within `radius` (input units) of a point generator that the
+    /// caller numbers `from` or later (the crossing points of `split.rs`) onto that
+    /// point, with clearance 0. Those vertices are where pieces meeting at the point
+    /// tie, exactly at the point; the point lies within rounding of the lines of the
+    /// pieces, not on them, so the constructions put them a few ulps off, joined by
+    /// edges of that length. Once on the point, such edges have zero length and merge.
+    pub(crate) fn snap_vertices_to_points(&mut self, from: u32, radius: f64) {
+        let r = radius * self.scale;
+        let mut grid = SparseGrid::new(r);
+        for (s, &i) in self.point_id.iter().enumerate() {
+            if i != u32::MAX && i >= from {
+                grid.insert(self.points[s], ());
+            }
+        }
+        for v in self
+            .graph
+            .vertices
+            .iter_mut()
+            .filter(|v| v.alive && v.t <= r)
+        {
+            if let Some(&(p, ())) = grid
+                .near(v.at)
+                .min_by(|x, y| x.0.dist(v.at).total_cmp(&y.0.dist(v.at)))
+            {
+                v.at = p;
+                v.t = 0.0;
+            }
+        }
     }
 
     /// The generator as the caller numbers it: `Point(i)` is the caller's point `i`,

@@ -31,7 +31,7 @@ use crate::compute::IncrementalOptions;
 use crate::control::Watch;
 use crate::geom::arc::{partial_sweep, ray_crosses_odd};
 use crate::geom::grid::SparseGrid;
-use crate::geom::ring::even_odd_contains;
+use crate::geom::ring::RayCrossings;
 use crate::geom::Point;
 use crate::scene::{Metric, Mode, Scene, SiteKind};
 use crate::subdivision::{Budget, Limits};
@@ -39,6 +39,7 @@ use crate::Error;
 use assembly::{assemble, Stretch};
 use phases::Phases;
 use rustc_hash::FxHashMap;
+use std::sync::OnceLock;
 
 /// Whether every site is a Euclidean point, a segment, an arc short of a full circle, a
 /// polyline or a polygon.
@@ -99,6 +100,10 @@ struct Generators {
     lonely: Vec<u32>,
     /// Closed rings of polygon sites (for insides).
     rings: Vec<Vec<Point>>,
+    /// The rings' edges, and the loops' segments, indexed for even-odd tests (built on
+    /// first use).
+    ring_crossings: OnceLock<RayCrossings>,
+    loop_crossings: OnceLock<RayCrossings>,
     /// In `medial_axis` mode, the segment and arc generators of open sites (segments,
     /// polylines, arcs) that close up into loops: they bound regions too.
     loop_segments: Vec<u32>,
@@ -145,6 +150,8 @@ impl GeneratorBuilder {
             arc_owner: Vec::new(),
             lonely: Vec::new(),
             rings: Vec::new(),
+            ring_crossings: OnceLock::new(),
+            loop_crossings: OnceLock::new(),
             loop_segments: Vec::new(),
             loop_arcs: Vec::new(),
             first_crossing_point: None,
@@ -558,33 +565,38 @@ impl Generators {
 
     /// Even-odd inside test against all polygon rings (boundary excluded).
     fn inside_polygons(&self, q: Point) -> bool {
-        self.rings
-            .iter()
-            .filter(|r| even_odd_contains(r, q))
-            .count()
-            % 2
-            == 1
+        let index = self.ring_crossings.get_or_init(|| {
+            RayCrossings::new(
+                self.rings
+                    .iter()
+                    .flat_map(|r| (0..r.len()).map(move |k| (r[k], r[(k + 1) % r.len()])))
+                    .collect(),
+            )
+        });
+        index.odd(q)
     }
 
     /// Whether `q` lies in the `medial_axis` region: the even-odd interior of the
     /// polygons' rings and of the loops of open sites together.
     fn inside_region(&self, q: Point) -> bool {
-        let segment_crosses = |&k: &u32| {
-            let [a, b] = self.segments[k as usize].map(|p| self.points[p as usize]);
-            (a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y)
-        };
+        let loop_segments = self.loop_crossings.get_or_init(|| {
+            RayCrossings::new(
+                self.loop_segments
+                    .iter()
+                    .map(|&k| {
+                        let [a, b] = self.segments[k as usize].map(|p| self.points[p as usize]);
+                        (a, b)
+                    })
+                    .collect(),
+            )
+        });
         let arc_crosses = |&k: &u32| {
             let arc = &self.arcs[k as usize];
             let ends = arc.ends.map(|p| self.points[p as usize]);
             ray_crosses_odd(arc.c, arc.r, arc.start, arc.span, ends, q)
         };
-        let loops = self
-            .loop_segments
-            .iter()
-            .filter(|k| segment_crosses(k))
-            .count()
-            + self.loop_arcs.iter().filter(|k| arc_crosses(k)).count();
-        self.inside_polygons(q) ^ (loops % 2 == 1)
+        let arcs = self.loop_arcs.iter().filter(|k| arc_crosses(k)).count();
+        self.inside_polygons(q) ^ loop_segments.odd(q) ^ (arcs % 2 == 1)
     }
 }
 

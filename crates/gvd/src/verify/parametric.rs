@@ -8,6 +8,7 @@
 //! point met is the foot.
 
 use crate::geom::bspline::RationalBspline;
+use crate::geom::grid::bounds_of_points;
 use crate::geom::{Aabb, Point};
 use crate::scene::SiteKind;
 
@@ -40,12 +41,15 @@ impl Parametric {
             bounds: Aabb::new(Point::default(), Point::default()),
         };
         let coarse = piece.sampled(f64::INFINITY);
-        let extent = bounding_box(&coarse).min.dist(bounding_box(&coarse).max);
+        let extent = {
+            let b = bounds_of_points(coarse.iter().map(|s| s.0));
+            b.min.dist(b.max)
+        };
         piece.spacing = spacing.max(extent / 64.0);
         piece.samples = piece.sampled(piece.spacing);
         // consecutive samples are at most `spacing` apart, so the piece between them
         // stays within `spacing` of either
-        let b = bounding_box(&piece.samples);
+        let b = bounds_of_points(piece.samples.iter().map(|s| s.0));
         let grow = Point::new(piece.spacing, piece.spacing);
         piece.bounds = Aabb::new(b.min - grow, b.max + grow);
         piece
@@ -171,22 +175,6 @@ impl Parametric {
         }
         best
     }
-}
-
-/// The bounding box of samples.
-fn bounding_box(samples: &[(Point, f64)]) -> Aabb {
-    samples.iter().fold(
-        Aabb::new(
-            Point::new(f64::INFINITY, f64::INFINITY),
-            Point::new(-f64::INFINITY, -f64::INFINITY),
-        ),
-        |b, s| {
-            Aabb::new(
-                Point::new(b.min.x.min(s.0.x), b.min.y.min(s.0.y)),
-                Point::new(b.max.x.max(s.0.x), b.max.y.max(s.0.y)),
-            )
-        },
-    )
 }
 
 /// Appends the samples of `(a, b]`, halving it while its chord exceeds `spacing`.

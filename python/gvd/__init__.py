@@ -100,6 +100,8 @@ def compute(
     max_boxes: Optional[int] = None,
     max_points: Optional[int] = None,
     bisectors: bool = False,
+    strict: bool = False,
+    timeout: Optional[float] = None,
 ) -> Diagram:
     """Computes the Voronoi diagram (or complex, or medial axis: the scene's ``mode``).
 
@@ -108,10 +110,14 @@ def compute(
     ``"incremental"`` (Euclidean points, segments, arcs, polylines, polygons) or
     ``"subdivision"`` (every site kind). ``max_box``, ``max_boxes`` and ``max_points``
     tune the subdivision engine; ``bisectors`` gives the incremental engine's edges
-    their exact bisectors. The GIL is released while it computes.
+    their exact bisectors. Segments that cross, overlap or touch are cut into pieces
+    that keep their site's index; ``strict=True`` refuses them instead, naming both
+    sites. ``timeout`` (seconds) bounds the run. The GIL is released while it
+    computes, and Ctrl-C stops it (``KeyboardInterrupt``).
 
     Raises ``SceneError`` (with ``.site`` and ``.field``) for refused scenes,
-    ``UnsupportedError``, ``BudgetError`` and ``OptionError``.
+    ``UnsupportedError``, ``BudgetError`` (also when ``timeout`` runs out, with
+    ``what == "seconds"``) and ``OptionError``.
     """
     return _compute(
         as_scene(scene),
@@ -121,6 +127,8 @@ def compute(
         max_boxes=max_boxes,
         max_points=max_points,
         bisectors=bisectors,
+        strict=strict,
+        timeout=timeout,
     )
 
 

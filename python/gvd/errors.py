@@ -52,8 +52,8 @@ class UnsupportedError(Error):
 
 
 class BudgetError(Error):
-    """A computation reached a work limit: ``what`` ("boxes" or "points") at ``limit``
-    (raise it with ``max_boxes=`` or ``max_points=``)."""
+    """A computation reached a work limit: ``what`` ("boxes", "points" or "seconds") at
+    ``limit`` (raise it with ``max_boxes=``, ``max_points=`` or ``timeout=``)."""
 
     what: str
     limit: int

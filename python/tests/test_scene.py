@@ -1,8 +1,12 @@
 """Scenes built in Python, read from every input form, and refused with the site and field."""
 
+import _thread
 import json
 import math
+import random
 import re
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -104,8 +108,10 @@ def test_conflicts_and_options():
     s = gvd.Scene([-2, -2, 2, 2])
     s.add_segment([-1, -1], [1, 1])
     s.add_segment([-1, 1], [1, -1])
+    crossed = gvd.compute(s)
+    assert crossed.stats["split_crossings"] == 1
     with pytest.raises(gvd.SceneError) as e:
-        gvd.compute(s)
+        gvd.compute(s, strict=True)
     assert e.value.site == 0 and e.value.other == 1 and e.value.field is None
     ok = gvd.Scene([0, 0, 1, 1])
     ok.add_point([0.5, 0.5])
@@ -157,3 +163,35 @@ def test_mode_and_repr():
     assert np.isclose(d.clearances.max(), 1.0)
     assert d.verify(grid=128)
     assert gvd.compute(s.with_mode("voronoi")).stats["engine"] == "incremental"
+
+
+def _slow_scene():
+    """8,000 lp points at epsilon 1e-6: seconds in the subdivision engine."""
+    rng = random.Random(1)
+    s = gvd.Scene([0, 0, 1, 1], 1e-6)
+    for _ in range(8000):
+        s.add_point([rng.random(), rng.random()], "lp", p=4)
+    return s
+
+
+def test_timeout_stops_the_run():
+    s = _slow_scene()
+    start = time.monotonic()
+    with pytest.raises(gvd.BudgetError) as e:
+        gvd.compute(s, engine="subdivision", timeout=0.01)
+    assert e.value.what == "seconds"
+    assert time.monotonic() - start < 0.5
+    with pytest.raises(gvd.OptionError) as e:
+        gvd.compute(s, timeout=0.0)
+    assert e.value.option == "timeout"
+
+
+def test_ctrl_c_stops_the_run():
+    s = _slow_scene()
+    threading.Timer(0.02, _thread.interrupt_main).start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        gvd.compute(s, engine="subdivision")
+    # the signal also raises once the run is over: only a stop well before its end shows
+    # that the run itself was cancelled
+    assert time.monotonic() - start < 1.0

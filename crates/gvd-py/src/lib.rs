@@ -16,13 +16,16 @@ use offsets::PyOffset;
 use pyo3::prelude::*;
 use report::PyReport;
 use scene::PyScene;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
 
 /// Computes the diagram of `scene` (see `gvd.compute`, which also takes dicts, JSON
 /// text and paths).
 #[pyfunction]
 // the keyword arguments of the Python function
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (scene, engine="auto", *, parallel=true, max_box=None, max_boxes=None, max_points=None, bisectors=false))]
+#[pyo3(signature = (scene, engine="auto", *, parallel=true, max_box=None, max_boxes=None, max_points=None, bisectors=false, strict=false, timeout=None))]
 fn compute(
     py: Python<'_>,
     scene: &mut PyScene,
@@ -32,6 +35,8 @@ fn compute(
     max_boxes: Option<usize>,
     max_points: Option<usize>,
     bisectors: bool,
+    strict: bool,
+    timeout: Option<f64>,
 ) -> PyResult<PyDiagram> {
     let engine = match engine {
         "auto" => gvd::Engine::Auto,
@@ -52,6 +57,17 @@ fn compute(
             ));
         }
     }
+    let timeout = match timeout {
+        None => None,
+        Some(t) if t.is_finite() && t > 0.0 => Some(Duration::from_secs_f64(t)),
+        Some(t) => {
+            return Err(option_error(
+                "timeout",
+                format!("must be a finite number of seconds > 0, found {t}"),
+            ))
+        }
+    };
+    let cancel = Arc::new(AtomicBool::new(false));
     let options = gvd::Options {
         engine,
         parallel,
@@ -63,17 +79,51 @@ fn compute(
             },
             ..Default::default()
         },
-        incremental: gvd::IncrementalOptions {
-            bisectors,
-            ..Default::default()
+        incremental: gvd::IncrementalOptions { bisectors, strict },
+        control: gvd::Control {
+            cancel: Some(cancel.clone()),
+            timeout,
+            progress: None,
         },
-        ..Default::default()
     };
     let scene = scene.scene()?;
-    let complex = py
-        .detach(|| gvd::compute(&scene, &options))
-        .map_err(to_py)?;
-    Ok(PyDiagram::new(scene, complex))
+    let complex = interruptible(py, &cancel, || gvd::compute(&scene, &options))?;
+    Ok(PyDiagram::new(scene, complex.map_err(to_py)?))
+}
+
+/// Runs `work` on a thread of its own without the GIL, looking for signals (Ctrl-C)
+/// every 20 ms; on one it sets `cancel`, waits for `work` to stop and raises the
+/// signal's exception (`KeyboardInterrupt`).
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    cancel: &AtomicBool,
+    work: impl FnOnce() -> T + Send,
+) -> PyResult<T> {
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(work);
+        loop {
+            let finished = py.detach(|| {
+                for _ in 0..4 {
+                    if worker.is_finished() {
+                        return true;
+                    }
+                    std::thread::sleep(Duration::from_millis(5));
+                }
+                worker.is_finished()
+            });
+            if finished {
+                break;
+            }
+            if let Err(signal) = py.check_signals() {
+                cancel.store(true, Ordering::Relaxed);
+                let _ = worker.join();
+                return Err(signal);
+            }
+        }
+        worker
+            .join()
+            .map_err(|_| to_py(gvd::Error::Internal("the computation panicked".into())))
+    })
 }
 
 /// The offset curves of `scene` at `distance` (the diagram computed in `complex` mode

@@ -256,10 +256,9 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
             );
         }
     }
-    let mut outputs = outputs_for(
-        &args.scene,
-        &[&args.json, &args.svg, &args.png, &args.geojson, &args.dxf],
-    )?;
+    let paths = [&args.json, &args.svg, &args.png, &args.geojson, &args.dxf];
+    let summary_only = paths.iter().all(|p| p.is_none());
+    let mut outputs = outputs_for(&args.scene, &paths, false)?;
     if let Some(n) = args.threads {
         rayon::ThreadPoolBuilder::new()
             .num_threads(n as usize)
@@ -295,7 +294,7 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
     let out = out.with_context(|| format!("{}", args.scene.display()))?;
     let d = &out.complex;
     let seconds = d.stats.get("seconds").and_then(|v| v.as_f64());
-    eprintln!(
+    let summary = format!(
         "{}: {} vertices, {} edges, {} boxes ({} uncertified) in {:.3} s",
         args.scene.display(),
         d.vertices.len(),
@@ -304,6 +303,13 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
         stat(d, "uncertified_boxes"),
         seconds.unwrap_or(0.0)
     );
+    if summary_only {
+        // with nothing to write, the summary is the output
+        println!("{summary}");
+        eprintln!("gvd: nothing written; to keep the diagram, {OUTPUT_HINT}");
+    } else {
+        eprintln!("{summary}");
+    }
     if let Some(cuts) = split_summary(d) {
         eprintln!("gvd: {cuts} (--strict refuses such input)");
     }
@@ -355,6 +361,7 @@ fn offset(args: OffsetArgs) -> Result<ExitCode> {
     let mut outputs = outputs_for(
         &args.scene,
         &[&args.json, &args.svg, &args.dxf, &args.geojson],
+        true,
     )?;
     gvd::offset::check_distance(args.distance)?;
     let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
@@ -439,17 +446,21 @@ fn bench(args: BenchArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// How to ask for outputs, for messages.
+const OUTPUT_HINT: &str =
+    "give -o OUT (.json, .svg, .png, .geojson, .dxf), or --json, --svg, --png, --geojson or --dxf OUT";
+
 /// The outputs of a command reading `scene`, each checked (see [`output`]) before any
-/// work; at least one is required.
-fn outputs_for(scene: &Path, paths: &[&Option<PathBuf>]) -> Result<Outputs> {
+/// work; at least one is required when `required`.
+fn outputs_for(scene: &Path, paths: &[&Option<PathBuf>], required: bool) -> Result<Outputs> {
     let mut outputs = Outputs::new(&[scene]);
     let mut any = false;
     for path in paths.iter().copied().flatten() {
         outputs.claim(path)?;
         any = true;
     }
-    if !any {
-        bail!("nothing to write: give -o OUT (.json, .svg, .png, .geojson, .dxf), or --json, --svg, --png, --geojson or --dxf OUT");
+    if required && !any {
+        bail!("nothing to write: {OUTPUT_HINT}");
     }
     Ok(outputs)
 }

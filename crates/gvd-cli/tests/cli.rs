@@ -62,6 +62,29 @@ fn compute_writes_a_diagram_that_verifies() {
 }
 
 #[test]
+fn compute_without_outputs_prints_the_summary() {
+    let out = gvd()
+        .arg("compute")
+        .arg(repo("examples/scenes/segments-0200.json"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let edges: usize = stdout
+        .split(" edges")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no edge count in {stdout}"));
+    assert!(edges > 200, "{stdout}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("nothing written"));
+}
+
+#[test]
 fn bad_scenes_are_refused_and_nothing_is_written() {
     let dir = repo("crates/gvd/tests/data/bad");
     let mut seen = 0;

@@ -294,13 +294,15 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
     let out = out.with_context(|| format!("{}", args.scene.display()))?;
     let d = &out.complex;
     let seconds = d.stats.get("seconds").and_then(|v| v.as_f64());
+    let boxes = match d.stats.get("boxes") {
+        Some(n) => format!(", {n} boxes ({} uncertified)", stat(d, "uncertified_boxes")),
+        None => String::new(),
+    };
     let summary = format!(
-        "{}: {} vertices, {} edges, {} boxes ({} uncertified) in {:.3} s",
+        "{}: {} vertices, {} edges{boxes} in {:.3} s",
         args.scene.display(),
         d.vertices.len(),
         d.edges.len(),
-        stat(d, "boxes"),
-        stat(d, "uncertified_boxes"),
         seconds.unwrap_or(0.0)
     );
     if summary_only {

@@ -33,6 +33,35 @@ impl BucketGrid {
         count: usize,
         bounds_of: impl Fn(usize) -> Aabb,
     ) -> BucketGrid {
+        Self::build(extent, side, max_per_axis, count, |grid, k, f| {
+            grid.for_cells_of(&bounds_of(k), f)
+        })
+    }
+
+    /// Buckets segments `0..count` as [`BucketGrid::new`] does, but item `k` goes only
+    /// into the cells that segment `ends_of(k)`, thickened by `pad`, meets (row by row),
+    /// not into every cell of its box: long oblique segments then share few cells. Two
+    /// segments that come within `pad` of each other share a cell.
+    pub fn of_segments(
+        extent: Aabb,
+        side: f64,
+        max_per_axis: usize,
+        count: usize,
+        ends_of: impl Fn(usize) -> [Point; 2],
+        pad: f64,
+    ) -> BucketGrid {
+        Self::build(extent, side, max_per_axis, count, |grid, k, f| {
+            grid.for_cells_along(ends_of(k), pad, f)
+        })
+    }
+
+    fn build(
+        extent: Aabb,
+        side: f64,
+        max_per_axis: usize,
+        count: usize,
+        cells_of: impl Fn(&BucketGrid, usize, &mut dyn FnMut(usize)),
+    ) -> BucketGrid {
         let side = if side > 0.0 && side.is_finite() {
             side
         } else {
@@ -56,7 +85,7 @@ impl BucketGrid {
         };
         let mut start = vec![0usize; grid.nx * grid.ny + 1];
         for k in 0..count {
-            grid.for_cells_of(&bounds_of(k), |c| start[c + 1] += 1);
+            cells_of(&grid, k, &mut |c| start[c + 1] += 1);
         }
         for c in 0..grid.nx * grid.ny {
             start[c + 1] += start[c];
@@ -64,7 +93,7 @@ impl BucketGrid {
         let mut fill = start.clone();
         let mut items = vec![0u32; start[grid.nx * grid.ny]];
         for k in 0..count {
-            grid.for_cells_of(&bounds_of(k), |c| {
+            cells_of(&grid, k, &mut |c| {
                 items[fill[c]] = k as u32;
                 fill[c] += 1;
             });
@@ -171,9 +200,52 @@ impl BucketGrid {
     }
 
     /// Calls `f` with the index of each cell that the box `b` meets.
-    fn for_cells_of(&self, b: &Aabb, mut f: impl FnMut(usize)) {
+    fn for_cells_of(&self, b: &Aabb, f: &mut dyn FnMut(usize)) {
         let ((i0, j0), (i1, j1)) = (self.cell_of(b.min), self.cell_of(b.max));
         for j in j0..=j1 {
+            for i in i0..=i1 {
+                f(j * self.nx + i);
+            }
+        }
+    }
+
+    /// Calls `f` for each cell that segment `ab`, thickened by `pad`, meets: per row of
+    /// cells, the x-range of the piece of `ab` within the row's band (both widened by
+    /// `pad` and by a margin for the rounding of the row's bounds and of the
+    /// interpolation, so that no cell the exact segment meets is missed).
+    fn for_cells_along(&self, [a, b]: [Point; 2], pad: f64, f: &mut dyn FnMut(usize)) {
+        let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
+        let scale = [a.x, a.y, b.x, b.y, self.origin.x, self.origin.y]
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let reach = pad + 16.0 * f64::EPSILON * scale + 1e-9 * self.side.min(f64::MAX / 2.0);
+        let (xmin, xmax) = (lo.x.min(hi.x) - reach, lo.x.max(hi.x) + reach);
+        let (_, j0) = self.cell_of(Point::new(lo.x, lo.y - reach));
+        let (_, j1) = self.cell_of(Point::new(hi.x, hi.y + reach));
+        for j in j0..=j1 {
+            // rows at the grid's border take everything beyond it (cells are clamped)
+            let band_lo = if j == 0 {
+                f64::NEG_INFINITY
+            } else {
+                self.origin.y + j as f64 * self.side - reach
+            };
+            let band_hi = if j + 1 == self.ny {
+                f64::INFINITY
+            } else {
+                self.origin.y + (j + 1) as f64 * self.side + reach
+            };
+            let (x0, x1) = if hi.y > lo.y {
+                let x_at = |y: f64| lo.x + (hi.x - lo.x) * ((y - lo.y) / (hi.y - lo.y));
+                let (xa, xb) = (x_at(lo.y.max(band_lo)), x_at(hi.y.min(band_hi)));
+                (
+                    (xa.min(xb) - reach).max(xmin),
+                    (xa.max(xb) + reach).min(xmax),
+                )
+            } else {
+                (xmin, xmax)
+            };
+            let (i0, _) = self.cell_of(Point::new(x0, lo.y));
+            let (i1, _) = self.cell_of(Point::new(x1, lo.y));
             for i in i0..=i1 {
                 f(j * self.nx + i);
             }
@@ -248,6 +320,7 @@ pub fn bounds_of_points(points: impl IntoIterator<Item = Point>) -> Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::segment_distance;
     use proptest::prelude::*;
 
     fn square(c: Point, r: f64) -> Aabb {
@@ -275,6 +348,41 @@ mod tests {
             }
         }
 
+        /// Segments that come within the pad of each other (or cross) share a cell.
+        #[test]
+        fn segments_that_meet_share_a_cell(
+            ends in proptest::collection::vec((-5.0..5.0f64, -5.0..5.0f64, -1.0..1.0f64, -1.0..1.0f64), 2..60),
+            side in 0.05..3.0f64,
+            pad in 0.0..0.5f64,
+        ) {
+            let segs: Vec<[Point; 2]> = ends.iter()
+                .map(|&(x, y, dx, dy)| [Point::new(x, y), Point::new(x + dx, y + dy)]).collect();
+            let extent = bounds_of_points(segs.iter().flatten().copied());
+            let grid = BucketGrid::of_segments(extent, side, 64, segs.len(), |k| segs[k], pad);
+            let mut cells = vec![Vec::new(); segs.len()];
+            for (c, bucket) in grid.buckets().enumerate() {
+                for &k in bucket {
+                    cells[k as usize].push(c);
+                }
+            }
+            let gap = |[a, b]: [Point; 2], [c, d]: [Point; 2]| {
+                let cross = |p: Point, q: Point, r: Point| (q - p).cross(r - p);
+                let crossing = cross(a, b, c) * cross(a, b, d) < 0.0 && cross(c, d, a) * cross(c, d, b) < 0.0;
+                if crossing { 0.0 } else {
+                    segment_distance(a, c, d).min(segment_distance(b, c, d))
+                        .min(segment_distance(c, a, b)).min(segment_distance(d, a, b))
+                }
+            };
+            for i in 0..segs.len() {
+                for j in i + 1..segs.len() {
+                    if gap(segs[i], segs[j]) <= pad * 0.99 {
+                        prop_assert!(cells[i].iter().any(|c| cells[j].contains(c)),
+                            "segments {i} and {j} meet but share no cell");
+                    }
+                }
+            }
+        }
+
         /// The rings around a cell visit every item exactly once per cell it lies in.
         #[test]
         fn rings_cover_the_grid(
@@ -292,5 +400,28 @@ mod tests {
             }
             prop_assert!(seen.iter().all(|&s| s == 1));
         }
+    }
+
+    /// Padding widens a row's x-range too: two parallel steep segments on either side
+    /// of a column boundary, closer than the pad, share a cell.
+    #[test]
+    fn steep_neighbours_across_a_column_boundary_share_a_cell() {
+        let segs = [
+            [Point::new(0.98, 0.1), Point::new(0.99, 3.9)],
+            [Point::new(1.02, 0.1), Point::new(1.01, 3.9)],
+        ];
+        let extent = Aabb::new(Point::new(0.0, 0.0), Point::new(4.0, 4.0));
+        let grid = BucketGrid::of_segments(extent, 1.0, 64, 2, |k| segs[k], 0.05);
+        let shared = grid.buckets().filter(|b| b.len() == 2).count();
+        assert!(shared > 0, "no shared cell");
+    }
+
+    #[test]
+    fn a_long_oblique_segment_does_not_fill_its_box() {
+        let diagonal = [Point::new(-5.0, -5.0), Point::new(5.0, 5.0)];
+        let extent = Aabb::new(diagonal[0], diagonal[1]);
+        let grid = BucketGrid::of_segments(extent, 0.1, 1024, 1, |_| diagonal, 0.0);
+        let filled = grid.buckets().filter(|b| !b.is_empty()).count();
+        assert!((100..400).contains(&filled), "{filled} cells of 10,000");
     }
 }

@@ -5,6 +5,7 @@
 
 use super::{Metric, Site, SiteKind};
 use crate::error::Error;
+use crate::geom::grid::{bounds_of_points, BucketGrid};
 use crate::geom::predicates::orientation as orient;
 use crate::geom::ring::winding_number;
 use crate::geom::{Aabb, Point};
@@ -49,15 +50,6 @@ struct Edge {
     index: usize,
     a: Point,
     b: Point,
-}
-
-impl Edge {
-    fn xmin(&self) -> f64 {
-        self.a.x.min(self.b.x)
-    }
-    fn xmax(&self) -> f64 {
-        self.a.x.max(self.b.x)
-    }
 }
 
 /// Checks that polygon rings (outer ring first, then holes) bound a proper region: each ring
@@ -114,9 +106,12 @@ fn distinct_count(ring: &[Point]) -> usize {
 }
 
 /// Any contact between edges of the rings other than the shared corner of two edges
-/// adjacent in one ring (a sweep over x-extents; adjacent overlaps are checked by the caller).
+/// adjacent in one ring (adjacent overlaps are checked by the caller). Pairs are tried
+/// within the cells of a grid that holds each edge in the cells it passes through, so
+/// long spiky rings cost about as much as round ones; of several contacts the message
+/// names the first pair in ring and edge order.
 fn check_crossings(rings: &[Vec<Point>]) -> Result<(), String> {
-    let mut edges: Vec<Edge> = rings
+    let edges: Vec<Edge> = rings
         .iter()
         .enumerate()
         .flat_map(|(ring, pts)| {
@@ -128,41 +123,63 @@ fn check_crossings(rings: &[Vec<Point>]) -> Result<(), String> {
             })
         })
         .collect();
-    edges.sort_by(|e, f| e.xmin().total_cmp(&f.xmin()));
-    for (k, e) in edges.iter().enumerate() {
-        for f in edges[k + 1..].iter().take_while(|f| f.xmin() <= e.xmax()) {
-            let c = contact(e.a, e.b, f.a, f.b);
-            if c == Contact::None {
-                continue;
-            }
-            let (e, f) = if (e.ring, e.index) < (f.ring, f.index) {
-                (e, f)
-            } else {
-                (f, e)
-            };
-            if e.ring == f.ring {
-                let n = rings[e.ring].len();
-                let adjacent = f.index == e.index + 1 || (e.index == 0 && f.index == n - 1);
-                if adjacent && c == Contact::Touch {
+    let extent = bounds_of_points(edges.iter().map(|e| e.a));
+    let n = edges.len() as f64;
+    let total: f64 = edges.iter().map(|e| e.a.dist(e.b)).sum();
+    // about one edge per cell, but at most ~8 cells per edge on average
+    let side = (extent.longest_side() / (2.0 * n).sqrt()).max(total / (8.0 * n));
+    let grid = BucketGrid::of_segments(
+        extent,
+        side,
+        4096,
+        edges.len(),
+        |k| [edges[k].a, edges[k].b],
+        0.0,
+    );
+    let mut first: Option<(&Edge, &Edge, Contact)> = None;
+    for bucket in grid.buckets() {
+        for (x, &i) in bucket.iter().enumerate() {
+            for &j in &bucket[x + 1..] {
+                // buckets list items in increasing order, which is ring and edge order
+                let (e, f) = (&edges[i as usize], &edges[j as usize]);
+                if first.is_some_and(|(e0, f0, _)| {
+                    (e0.ring, e0.index, f0.ring, f0.index) <= (e.ring, e.index, f.ring, f.index)
+                }) {
                     continue;
                 }
-                let how = if c == Contact::Cross {
-                    "cross"
-                } else {
-                    "touch"
-                };
-                return Err(format!(
-                    "ring {} is self-intersecting: edges {} and {} {how}",
-                    e.ring, e.index, f.index
-                ));
+                let c = contact(e.a, e.b, f.a, f.b);
+                if c == Contact::None {
+                    continue;
+                }
+                if e.ring == f.ring {
+                    let last = rings[e.ring].len() - 1;
+                    let adjacent = f.index == e.index + 1 || (e.index == 0 && f.index == last);
+                    if adjacent && c == Contact::Touch {
+                        continue;
+                    }
+                }
+                first = Some((e, f, c));
             }
-            return Err(format!(
-                "rings {} and {} intersect: edge {} of ring {} meets edge {} of ring {}",
-                e.ring, f.ring, e.index, e.ring, f.index, f.ring
-            ));
         }
     }
-    Ok(())
+    match first {
+        None => Ok(()),
+        Some((e, f, c)) if e.ring == f.ring => {
+            let how = if c == Contact::Cross {
+                "cross"
+            } else {
+                "touch"
+            };
+            Err(format!(
+                "ring {} is self-intersecting: edges {} and {} {how}",
+                e.ring, e.index, f.index
+            ))
+        }
+        Some((e, f, _)) => Err(format!(
+            "rings {} and {} intersect: edge {} of ring {} meets edge {} of ring {}",
+            e.ring, f.ring, e.index, e.ring, f.index, f.ring
+        )),
+    }
 }
 
 /// The first point site that repeats an earlier one (same location and same metric), as

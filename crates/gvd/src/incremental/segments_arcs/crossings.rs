@@ -107,9 +107,10 @@ fn segment_pair(
     None
 }
 
-/// A uniform grid over the boxes of `segments` (padded by `near`, so that an end that
-/// nearly touches a segment shares a cell with it) and the segments' extent: cells
-/// about as long as the average segment, at most ~4 per segment.
+/// A uniform grid over `segments`, each in the cells it passes through (thickened by
+/// `near`, so that an end that nearly touches a segment shares a cell with it), and the
+/// segments' extent: about one segment per cell, at most ~8 cells per segment on
+/// average.
 pub(super) fn segment_grid(
     points: &[Point],
     segments: &[[u32; 2]],
@@ -121,16 +122,8 @@ pub(super) fn segment_grid(
         .map(|k| ends(k)[0].dist(ends(k)[1]))
         .sum();
     let n = segments.len() as f64;
-    let ext = extent.longest_side().max(f64::MIN_POSITIVE);
-    let side = (total / n).max(ext / (2.0 * n).sqrt()).max(ext / 4096.0);
-    let grid = BucketGrid::new(extent, side, usize::MAX, segments.len(), |k| {
-        let [pa, pb] = ends(k);
-        let pad = Point::new(near, near);
-        Aabb::new(
-            Point::new(pa.x.min(pb.x), pa.y.min(pb.y)) - pad,
-            Point::new(pa.x.max(pb.x), pa.y.max(pb.y)) + pad,
-        )
-    });
+    let side = (extent.longest_side() / (2.0 * n).sqrt()).max(total / (8.0 * n));
+    let grid = BucketGrid::of_segments(extent, side, 4096, segments.len(), ends, near);
     (grid, extent)
 }
 

@@ -57,8 +57,56 @@ fn circle_distance(q: Point) -> f64 {
     (q.dist(Point::new(0.2, -0.1)) - 0.7).abs()
 }
 
+/// The unit circle about (1, 0) clipped to `CLIP_ARC`: a quarter-like arc from (0, 0) to
+/// (0.5, −0.866), both ends on the clip box (the tangent-circle examples' sites).
+const CLIP_ARC: [f64; 4] = [-0.5, -0.8660254037844386, 0.5, 0.0];
+
+/// The distance to that arc and a nearest point: the radial foot if the clip box holds
+/// it, else the nearest end (the distance along a circle is unimodal, so no other point
+/// of an arc can be nearer).
+fn clipped_circle_nearest(q: Point) -> (f64, Point) {
+    let c = Point::new(1.0, 0.0);
+    let clip = Aabb::from_array(CLIP_ARC);
+    let v = q - c;
+    let radial = c + v * (1.0 / v.norm());
+    let mut candidates = vec![Point::new(0.0, 0.0), Point::new(0.5, -0.8660254037844386)];
+    if clip.contains(radial) {
+        candidates.push(radial);
+    }
+    candidates
+        .into_iter()
+        .map(|p| (q.dist(p), p))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .unwrap()
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// On a curve cut by its clip box, the nodes the box state keeps (pruned by the
+    /// foot-point and end conditions) still give bounds that enclose the distance and a
+    /// gradient bound that holds the gradient, the nearest end's included.
+    #[test]
+    fn bounds_hold_on_a_clipped_arc(
+        x in -0.6f64..0.6, y in -1.0f64..0.1, w in 0.0005f64..0.1, u in 0.0f64..1.0, v in 0.0f64..1.0
+    ) {
+        let f = field("(x - 1)^2 + y^2 - 1", CLIP_ARC, 1.0 / 256.0).unwrap();
+        let b = Aabb::from_array([x, y, x + w, y + w]);
+        let s = f.state(&b);
+        let q = b.at(u, v);
+        let (d, foot) = clipped_circle_nearest(q);
+        let r = f.bound(&s, &b);
+        prop_assert!(r.lo <= d + 1e-12 && d <= r.hi + 1e-12, "{r} vs {d} at {q:?}");
+        prop_assert!((f.value(q) - d).abs() < 1e-9, "value {} vs {d} at {q:?}", f.value(q));
+        if d > 1e-9 {
+            let g = f.gradient_bound(&s, &b).unwrap();
+            let expected = (q - foot) * (1.0 / d);
+            prop_assert!(
+                g[0].contains(expected.x) && g[1].contains(expected.y),
+                "{g:?} vs {expected:?} at {q:?}"
+            );
+        }
+    }
 
     /// Box bounds (the state computed from scratch, and after splits) enclose the
     /// distance at points of the box; the point value is the distance.
@@ -289,6 +337,38 @@ fn paper_example_3_agrees_with_circle_sites_outside_the_discs() {
         b.sort();
         assert_eq!(a, b);
     }
+}
+
+/// At epsilon 1/1024 the edge from the three circles' vertex to a corner of the domain
+/// passes exactly through corners of the boxes (the scene's √3 meets the dyadic
+/// lattice); it must still come out in one piece: every edge end that is not a vertex
+/// lies on the domain's boundary.
+#[test]
+fn paper_example_3_at_a_finer_epsilon_has_no_broken_edge() {
+    let s = scene("shou-ex3-three-circles");
+    let fine = Scene::new(s.domain(), 1.0 / 1024.0, s.mode(), s.sites().to_vec()).unwrap();
+    let d = compute(&fine, &Options::default()).unwrap();
+    let domain = fine.domain();
+    let on_boundary = |p: Point| {
+        [
+            p.x - domain.min.x,
+            domain.max.x - p.x,
+            p.y - domain.min.y,
+            domain.max.y - p.y,
+        ]
+        .iter()
+        .any(|g| g.abs() < 1e-9)
+    };
+    for (k, e) in d.edges.iter().enumerate() {
+        let ends = [(e.from, e.points[0]), (e.to, *e.points.last().unwrap())];
+        for (vertex, at) in ends {
+            assert!(
+                vertex.is_some() || on_boundary(at),
+                "edge {k} ends at {at:?}, neither at a vertex nor on the boundary"
+            );
+        }
+    }
+    assert_eq!(d.vertices.len(), 1);
 }
 
 #[test]

@@ -294,12 +294,36 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                 }
             })
             .collect();
-        let (mut lower, mut upper): (Vec<Port>, Vec<Port>) =
-            ports.into_iter().partition(|p| p.at.coord(axis) <= mid);
+        let (mut lower, mut upper): (Vec<Port>, Vec<Port>) = ports
+            .into_iter()
+            .partition(|p| self.goes_lower(&b, p, axis, mid));
         lower.extend_from_slice(&inner);
         upper.extend(inner);
         self.resolve(lo, sites, lower, out);
         self.resolve(hi, sites, upper, out);
+    }
+
+    /// Whether port `p` of box `b` belongs to the lower half when `b` is split at `mid`
+    /// along `axis`. A port exactly at the split (a corner of both halves) goes to the
+    /// half its bisector enters: the one its tangent, pointed into `b`, leans towards.
+    fn goes_lower(&self, b: &Aabb, p: &Port, axis: Axis, mid: f64) -> bool {
+        let at = p.at.coord(axis);
+        if at != mid {
+            return at < mid;
+        }
+        let [f, g] = p.pair.map(|s| &self.fields[s as usize]);
+        let normal = f.gradient(p.at) - g.gradient(p.at);
+        let tangent = Point::new(-normal.y, normal.x);
+        // the box's side the port lies on, across the split line
+        let (along, across, low_side) = match axis {
+            Axis::X => (tangent.x, tangent.y, p.at.y <= b.center().y),
+            Axis::Y => (tangent.y, tangent.x, p.at.x <= b.center().x),
+        };
+        let inward = if low_side { across } else { -across };
+        if inward == 0.0 || along == 0.0 {
+            return true;
+        }
+        (along < 0.0) == (inward > 0.0)
     }
 
     /// At the resolution cut-off: one vertex at the box centre joins all ports when three

@@ -17,6 +17,7 @@
 use super::dense::Jet;
 use crate::geom::{Aabb, Axis, Point};
 use crate::num::bernstein::Bernstein2;
+use crate::num::interval::{round_down, round_up};
 use crate::num::Interval;
 
 /// No node index.
@@ -43,6 +44,9 @@ pub(super) struct Node {
     pub witness: u32,
     /// For a leaf, its index in [`Enclosure::leaves`] ([`NONE`] otherwise).
     pub leaf: u32,
+    /// Componentwise enclosures of a positive multiple of `∇f` at every point of the
+    /// curve under this node (each point's own multiple): enough to test directions.
+    pub normal: [Interval; 2],
 }
 
 /// What a leaf knows of the curve inside it.
@@ -205,11 +209,13 @@ impl Builder<'_> {
             return None;
         }
         let mut bbox = e.nodes[kids[0] as usize].bbox;
+        let mut normal = e.nodes[kids[0] as usize].normal;
         let centre = b.center();
         let mut witness = (f64::INFINITY, NONE);
         for &k in &kids {
             let n = &e.nodes[k as usize];
             bbox = hull(&bbox, &n.bbox);
+            normal = [normal[0].hull(n.normal[0]), normal[1].hull(n.normal[1])];
             if n.witness != NONE {
                 let d = e.witnesses[n.witness as usize].p.dist(centre);
                 if d < witness.0 {
@@ -225,6 +231,7 @@ impl Builder<'_> {
             count: kids.len() as u32,
             witness: witness.1,
             leaf: NONE,
+            normal,
         });
         Some(e.nodes.len() as u32 - 1)
     }
@@ -281,6 +288,14 @@ impl Builder<'_> {
                 }
             }
         }
+        // a corner where f vanishes to rounding (the curve ends there on a clip corner,
+        // or passes a corner exactly) has no sign change beside it: a sample of its own
+        for (p, sp) in [(p00, s00), (p10, s10), (p11, s11), (p01, s01)] {
+            let level = 1e3 * f64::EPSILON * self.jet.f.magnitude(p.x, p.y);
+            if sp == 0 && self.jet.f.eval(p.x, p.y).abs() <= level {
+                leaf.samples.push(p);
+            }
+        }
         let grow = e.margin;
         let bbox = Aabb::new(
             Point::new(b.min.x - grow, b.min.y - grow),
@@ -293,6 +308,7 @@ impl Builder<'_> {
             count: 0,
             witness,
             leaf: e.leaves.len() as u32 - 1,
+            normal: gradient_direction(form, &b),
         });
         e.nodes.len() as u32 - 1
     }
@@ -409,6 +425,20 @@ pub(super) fn project(jet: &Jet, mut p: Point, within: &Aabb) -> Option<Point> {
     }
     let level = 1e3 * f64::EPSILON * jet.f.magnitude(p.x, p.y);
     (within.contains(p) && jet.f.eval(p.x, p.y).abs() <= level).then_some(p)
+}
+
+/// `∇f` over box `b` times `width · height > 0`, from the Bernstein form of `f` over
+/// `b`: `(∂f/∂u · height, ∂f/∂v · width)` in the form's relative coordinates, widened
+/// for the rounding of the box's sides.
+fn gradient_direction(form: &Bernstein2, b: &Aabb) -> [Interval; 2] {
+    let widen = |i: Interval| {
+        let slack = 1e-14 * i.mag();
+        Interval::new(round_down(i.lo - slack), round_up(i.hi + slack))
+    };
+    [
+        widen(form.derivative(Axis::X).range().scale(b.height())),
+        widen(form.derivative(Axis::Y).range().scale(b.width())),
+    ]
 }
 
 /// The smallest box holding both.

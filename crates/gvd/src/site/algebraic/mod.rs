@@ -138,7 +138,7 @@ impl AlgebraicField {
         while let Some(n) = work.pop() {
             let node = &e.nodes[n as usize];
             let lo = gap(b, &node.bbox);
-            if lo > hi {
+            if lo > hi || holds_no_foot(&self.clip, b, &node.bbox, &node.normal) {
                 continue;
             }
             if node.leaf == NONE && diagonal(&node.bbox) > open {
@@ -163,7 +163,7 @@ impl AlgebraicField {
         let unit = Interval::new(-1.0, 1.0);
         let mut gradient: Option<[Interval; 2]> = None;
         for &(n, _) in &kept {
-            let g = unit_bound(b, &e.nodes[n as usize].bbox);
+            let g = self.gradient_from(b, &e.nodes[n as usize]);
             gradient = Some(match gradient {
                 None => g,
                 Some(h) => [h[0].hull(g[0]), h[1].hull(g[1])],
@@ -175,6 +175,37 @@ impl AlgebraicField {
             hi,
             gradient: gradient.unwrap_or([unit, unit]),
         }
+    }
+
+    /// An enclosure of the distance's gradient `(q − p)/|q − p|` at the points `q` of `b`
+    /// whose nearest point `p` lies in `node`. Where `p` must be a foot (the node is
+    /// clear of the clip box's sides) on a known side of the curve, the gradient is also
+    /// `±∇f(p)/|∇f(p)|`, far tighter where the node is not small beside its distance.
+    fn gradient_from(&self, b: &Aabb, node: &enclosure::Node) -> [Interval; 2] {
+        let (n, normal) = (&node.bbox, &node.normal);
+        let between = unit_bound(b, n);
+        let c = &self.clip;
+        let inside =
+            n.min.x > c.min.x && n.max.x < c.max.x && n.min.y > c.min.y && n.max.y < c.max.y;
+        let side = (b.x() - n.x()) * normal[0] + (b.y() - n.y()) * normal[1];
+        if !inside || !side.excludes_zero() {
+            return between;
+        }
+        let Some(unit) = direction(normal[0], normal[1]) else {
+            return between;
+        };
+        let sign = if side.lo > 0.0 { 1.0 } else { -1.0 };
+        let meet = |a: Interval, u: Interval| {
+            let u = u.scale(sign);
+            let (lo, hi) = (a.lo.max(u.lo), a.hi.min(u.hi));
+            // empty only through rounding (both hold the gradient): keep the boxes' one
+            if lo <= hi {
+                Interval::new(lo, hi)
+            } else {
+                a
+            }
+        };
+        [meet(between[0], unit[0]), meet(between[1], unit[1])]
     }
 
     /// The largest distance from `b` to node `n`'s witness bracket (∞ without one).
@@ -203,6 +234,38 @@ impl AlgebraicField {
     }
 }
 
+/// True when no point of the curve `{f = 0} ∩ clip` in a node (box `n`, gradient
+/// directions `normal`) is nearest to any point `q` of `b`. A nearest point `p` is singular (`∇f = 0`), a
+/// foot, where `(q − p) × ∇f(p) = 0`, or an end on a side of the clip box from which
+/// the curve, followed inward along its tangent `t`, gets no nearer:
+/// `(q − p) · t ≤ 0`. Interval forms over `b × n` that exclude each case prove it.
+/// (Distance bounds alone keep every node within the upper bound, a span of `√|b|`
+/// along a curve that bends away from `b`; this keeps a span of about `|b|`.)
+fn holds_no_foot(clip: &Aabb, b: &Aabb, n: &Aabb, normal: &[Interval; 2]) -> bool {
+    let (dx, dy) = (b.x() - n.x(), b.y() - n.y());
+    if !(dx * normal[1] - dy * normal[0]).excludes_zero() {
+        return false;
+    }
+    let c = clip;
+    let tangent = [-normal[1], normal[0]];
+    // the sides the node reaches, by their inward normals
+    let sides = [
+        (n.min.x <= c.min.x, [1.0, 0.0]),
+        (n.max.x >= c.max.x, [-1.0, 0.0]),
+        (n.min.y <= c.min.y, [0.0, 1.0]),
+        (n.max.y >= c.max.y, [0.0, -1.0]),
+    ];
+    sides.iter().filter(|s| s.0).all(|&(_, inward)| {
+        let across = tangent[0].scale(inward[0]) + tangent[1].scale(inward[1]);
+        if !across.excludes_zero() {
+            return false; // the curve may run along the side
+        }
+        let sign = if across.lo > 0.0 { 1.0 } else { -1.0 };
+        let along = dx * tangent[0].scale(sign) + dy * tangent[1].scale(sign);
+        along.lo > 0.0
+    })
+}
+
 /// The length of a box's diagonal.
 fn diagonal(b: &Aabb) -> f64 {
     b.width().hypot(b.height())
@@ -222,19 +285,20 @@ fn gap(a: &Aabb, b: &Aabb) -> f64 {
 /// meet.
 fn unit_bound(b: &Aabb, n: &Aabb) -> [Interval; 2] {
     let unit = Interval::new(-1.0, 1.0);
-    let dx = b.x() - n.x();
-    let dy = b.y() - n.y();
+    direction(b.x() - n.x(), b.y() - n.y()).unwrap_or([unit, unit])
+}
+
+/// The unit vectors `v/|v|`, `v ∈ dx × dy`; `None` when the box may hold 0.
+fn direction(dx: Interval, dy: Interval) -> Option<[Interval; 2]> {
     let r = (dx.sqr() + dy.sqr()).sqrt();
     if r.lo <= 0.0 {
-        return [unit, unit];
+        return None;
     }
-    match (dx.div(r), dy.div(r)) {
-        (Some(gx), Some(gy)) => [
-            Interval::new(gx.lo.max(-1.0), gx.hi.min(1.0)),
-            Interval::new(gy.lo.max(-1.0), gy.hi.min(1.0)),
-        ],
-        _ => [unit, unit],
-    }
+    let (gx, gy) = (dx.div(r)?, dy.div(r)?);
+    Some([
+        Interval::new(gx.lo.max(-1.0), gx.hi.min(1.0)),
+        Interval::new(gy.lo.max(-1.0), gy.hi.min(1.0)),
+    ])
 }
 
 impl DistanceField for AlgebraicField {

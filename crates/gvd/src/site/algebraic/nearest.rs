@@ -7,6 +7,7 @@
 
 use super::dense::Jet;
 use super::enclosure::{Enclosure, NONE};
+use super::holds_no_foot;
 use crate::geom::{segment_foot, Aabb, Point};
 
 /// The distance to the curve and a nearest point of it.
@@ -31,11 +32,12 @@ pub(super) fn nearest(
     stack.push((box_distance(q, &e.nodes[root as usize].bbox), root));
     let mut sample = (f64::INFINITY, q);
     let mut chord = (f64::INFINITY, q);
+    let at_q = Aabb::new(q, q);
     while let Some((lo, n)) = stack.pop() {
-        if lo > sample.0.min(chord.0) {
+        let node = &e.nodes[n as usize];
+        if lo > sample.0.min(chord.0) || holds_no_foot(clip, &at_q, &node.bbox, &node.normal) {
             continue;
         }
-        let node = &e.nodes[n as usize];
         if node.leaf == NONE {
             let mut kids: [(f64, u32); 2] = [(f64::INFINITY, NONE); 2];
             for (k, &c) in e.children(n).iter().enumerate().take(2) {

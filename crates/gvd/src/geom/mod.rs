@@ -267,4 +267,19 @@ impl Aabb {
         let dy = (self.min.y - p.y).max(p.y - self.max.y).max(0.0);
         dx.hypot(dy)
     }
+
+    /// The distance between the box and the segment `[a, b]` (0 where they meet): for
+    /// disjoint convex sets it is attained at a vertex of one of them.
+    pub fn segment_distance(&self, a: Point, b: Point) -> f64 {
+        if self.segment_range(a, b).is_some() {
+            return 0.0;
+        }
+        self.corners()
+            .iter()
+            .map(|&c| segment_distance(c, a, b))
+            .fold(
+                self.outside_distance(a).min(self.outside_distance(b)),
+                f64::min,
+            )
+    }
 }

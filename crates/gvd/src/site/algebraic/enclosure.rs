@@ -44,8 +44,7 @@ pub(super) struct Node {
     pub witness: u32,
     /// For a leaf, its index in [`Enclosure::leaves`] ([`NONE`] otherwise).
     pub leaf: u32,
-    /// Componentwise enclosures of a positive multiple of `∇f` at every point of the
-    /// curve under this node (each point's own multiple): enough to test directions.
+    /// A componentwise enclosure of `∇f` over the node's box.
     pub normal: [Interval; 2],
 }
 
@@ -56,6 +55,17 @@ pub(super) struct Leaf {
     pub samples: Vec<Point>,
     /// Two crossings of the leaf's sides, when it has exactly two.
     pub chord: Option<(Point, Point)>,
+    /// A thin region holding every point of the curve in the leaf, where `f` is
+    /// monotone across the curve's direction.
+    pub strip: Option<Strip>,
+}
+
+/// The points within `half_width` of the segment `a`–`b`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Strip {
+    pub a: Point,
+    pub b: Point,
+    pub half_width: f64,
 }
 
 /// The enclosure tree; the root is the last node.
@@ -289,11 +299,18 @@ impl Builder<'_> {
             }
         }
         // a corner where f vanishes to rounding (the curve ends there on a clip corner,
-        // or passes a corner exactly) has no sign change beside it: a sample of its own
+        // or passes a corner exactly) has no sign change beside it: a sample of its own,
+        // and a witness where f is exactly 0 there
         for (p, sp) in [(p00, s00), (p10, s10), (p11, s11), (p01, s01)] {
             let level = 1e3 * f64::EPSILON * self.jet.f.magnitude(p.x, p.y);
             if sp == 0 && self.jet.f.eval(p.x, p.y).abs() <= level {
                 leaf.samples.push(p);
+                if exact_zero(self.f, p) {
+                    if witness == NONE {
+                        witness = e.witnesses.len() as u32;
+                    }
+                    e.witnesses.push(Witness { a: p, b: p, p });
+                }
             }
         }
         let grow = e.margin;
@@ -301,6 +318,11 @@ impl Builder<'_> {
             Point::new(b.min.x - grow, b.min.y - grow),
             Point::new(b.max.x + grow, b.max.y + grow),
         );
+        let normal = gradient_bound(form, &b);
+        leaf.strip = leaf
+            .samples
+            .first()
+            .and_then(|&p| self.strip(p, &normal, &b, grow));
         e.leaves.push(leaf);
         e.nodes.push(Node {
             bbox,
@@ -308,9 +330,59 @@ impl Builder<'_> {
             count: 0,
             witness,
             leaf: e.leaves.len() as u32 - 1,
-            normal: gradient_direction(form, &b),
+            normal,
         });
         e.nodes.len() as u32 - 1
+    }
+
+    /// The strip about the line through `p` (a point of the curve in a leaf with box
+    /// `b`, its points within `slack` of it, and gradient enclosure `g`) across which
+    /// `f` is monotone. With `n` the
+    /// mean direction of `∇f`, `u ⊥ n`, and a point `p + αu + βn` of the curve in the
+    /// box, the mean value theorem gives `0 ∈ f(p) + α·(g·u) + β·(g·n)`, so
+    /// `|β| ≤ (|f(p)| + |α|·max|g·u|) / min|g·n|`: about `κ·side²` for curvature `κ`.
+    /// `None` where `g·n` may vanish or the strip is no thinner than the box.
+    fn strip(&self, p: Point, g: &[Interval; 2], b: &Aabb, slack: f64) -> Option<Strip> {
+        let mid = Point::new(g[0].mid(), g[1].mid());
+        let len = mid.norm();
+        if !(len > 0.0 && len.is_finite()) {
+            return None;
+        }
+        let n = mid * (1.0 / len);
+        let u = n.perp();
+        let across = g[0].scale(n.x) + g[1].scale(n.y);
+        let along = (g[0].scale(u.x) + g[1].scale(u.y)).mag();
+        let least = if across.lo > 0.0 {
+            across.lo
+        } else if across.hi < 0.0 {
+            -across.hi
+        } else {
+            return None;
+        };
+        let residual = self
+            .f
+            .eval_interval(
+                Interval::point(p.x),
+                Interval::point(p.y),
+                Interval::point(0.0),
+            )
+            .mag();
+        // the range of α over the box (the curve's points lie in it, to the margin)
+        let (mut first, mut last) = (f64::INFINITY, f64::NEG_INFINITY);
+        for c in b.corners() {
+            let alpha = (c - p).dot(u);
+            first = first.min(alpha);
+            last = last.max(alpha);
+        }
+        let widen = 1e-12 * (last - first) + 2.0 * slack;
+        let (first, last) = (first - widen, last + widen);
+        let reach = first.abs().max(last.abs());
+        let half_width = round_up((residual + reach * along) / least * (1.0 + 1e-12) + 4.0 * slack);
+        (half_width.is_finite() && half_width < 0.25 * b.longest_side()).then(|| Strip {
+            a: p + u * first,
+            b: p + u * last,
+            half_width,
+        })
     }
 
     /// The crossing of the curve with the segment `p`–`q` whose ends have opposite
@@ -427,17 +499,17 @@ pub(super) fn project(jet: &Jet, mut p: Point, within: &Aabb) -> Option<Point> {
     (within.contains(p) && jet.f.eval(p.x, p.y).abs() <= level).then_some(p)
 }
 
-/// `∇f` over box `b` times `width · height > 0`, from the Bernstein form of `f` over
-/// `b`: `(∂f/∂u · height, ∂f/∂v · width)` in the form's relative coordinates, widened
+/// A componentwise enclosure of `∇f` over box `b`, from the Bernstein form of `f` over
+/// `b`: `(∂f/∂u / width, ∂f/∂v / height)` in the form's relative coordinates, widened
 /// for the rounding of the box's sides.
-fn gradient_direction(form: &Bernstein2, b: &Aabb) -> [Interval; 2] {
+fn gradient_bound(form: &Bernstein2, b: &Aabb) -> [Interval; 2] {
     let widen = |i: Interval| {
         let slack = 1e-14 * i.mag();
         Interval::new(round_down(i.lo - slack), round_up(i.hi + slack))
     };
     [
-        widen(form.derivative(Axis::X).range().scale(b.height())),
-        widen(form.derivative(Axis::Y).range().scale(b.width())),
+        widen(form.derivative(Axis::X).range().scale(1.0 / b.width())),
+        widen(form.derivative(Axis::Y).range().scale(1.0 / b.height())),
     ]
 }
 

@@ -55,6 +55,14 @@ impl BucketGrid {
         })
     }
 
+    /// A cell side for [`BucketGrid::of_segments`] over `count` segments of total length
+    /// `total_length` in `extent`: about one segment per cell, but at most about eight
+    /// cells per segment on average.
+    pub fn segment_cell_side(extent: &Aabb, count: usize, total_length: f64) -> f64 {
+        let n = count as f64;
+        (extent.longest_side() / (2.0 * n).sqrt()).max(total_length / (8.0 * n))
+    }
+
     fn build(
         extent: Aabb,
         side: f64,

@@ -124,10 +124,8 @@ fn check_crossings(rings: &[Vec<Point>]) -> Result<(), String> {
         })
         .collect();
     let extent = bounds_of_points(edges.iter().map(|e| e.a));
-    let n = edges.len() as f64;
     let total: f64 = edges.iter().map(|e| e.a.dist(e.b)).sum();
-    // about one edge per cell, but at most ~8 cells per edge on average
-    let side = (extent.longest_side() / (2.0 * n).sqrt()).max(total / (8.0 * n));
+    let side = BucketGrid::segment_cell_side(&extent, edges.len(), total);
     let grid = BucketGrid::of_segments(
         extent,
         side,

@@ -121,8 +121,7 @@ pub(super) fn segment_grid(
     let total: f64 = (0..segments.len())
         .map(|k| ends(k)[0].dist(ends(k)[1]))
         .sum();
-    let n = segments.len() as f64;
-    let side = (extent.longest_side() / (2.0 * n).sqrt()).max(total / (8.0 * n));
+    let side = BucketGrid::segment_cell_side(&extent, segments.len(), total);
     let grid = BucketGrid::of_segments(extent, side, 4096, segments.len(), ends, near);
     (grid, extent)
 }

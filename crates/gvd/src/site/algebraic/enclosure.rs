@@ -337,9 +337,8 @@ impl Builder<'_> {
 
     /// The strip about the line through `p` (a point of the curve in a leaf with box
     /// `b`, its points within `slack` of it, and gradient enclosure `g`) across which
-    /// `f` is monotone. With `n` the
-    /// mean direction of `∇f`, `u ⊥ n`, and a point `p + αu + βn` of the curve in the
-    /// box, the mean value theorem gives `0 ∈ f(p) + α·(g·u) + β·(g·n)`, so
+    /// `f` is monotone. With `n` the mean direction of `∇f`, `u ⊥ n`, and a point
+    /// `p + αu + βn` of the curve in the box, the mean value theorem gives `0 ∈ f(p) + α·(g·u) + β·(g·n)`, so
     /// `|β| ≤ (|f(p)| + |α|·max|g·u|) / min|g·n|`: about `κ·side²` for curvature `κ`.
     /// `None` where `g·n` may vanish or the strip is no thinner than the box.
     fn strip(&self, p: Point, g: &[Interval; 2], b: &Aabb, slack: f64) -> Option<Strip> {

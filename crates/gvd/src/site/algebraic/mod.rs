@@ -155,10 +155,7 @@ impl AlgebraicField {
                     work.push(c);
                 }
             } else {
-                let lo = lo.max(self.strip_gap(b, n));
-                if lo <= hi {
-                    kept.push((n, lo));
-                }
+                kept.push((n, lo.max(self.strip_gap(b, n))));
             }
         }
         kept.retain(|k| k.1 <= hi);
@@ -187,9 +184,7 @@ impl AlgebraicField {
     fn gradient_from(&self, b: &Aabb, node: &enclosure::Node) -> [Interval; 2] {
         let (n, normal) = (&node.bbox, &node.normal);
         let between = unit_bound(b, n);
-        let c = &self.clip;
-        let inside =
-            n.min.x > c.min.x && n.max.x < c.max.x && n.min.y > c.min.y && n.max.y < c.max.y;
+        let inside = !clip_sides(&self.clip, n).iter().any(|s| s.0);
         let side = (b.x() - n.x()) * normal[0] + (b.y() - n.y()) * normal[1];
         if !inside || !side.excludes_zero() {
             return between;
@@ -257,10 +252,10 @@ impl AlgebraicField {
 }
 
 /// True when no point of the curve `{f = 0} ∩ clip` in a node (box `n`, gradient
-/// directions `normal`) is nearest to any point `q` of `b`. A nearest point `p` is singular (`∇f = 0`), a
-/// foot, where `(q − p) × ∇f(p) = 0`, or an end on a side of the clip box from which
-/// the curve, followed inward along its tangent `t`, gets no nearer:
-/// `(q − p) · t ≤ 0`. Interval forms over `b × n` that exclude each case prove it.
+/// enclosure `normal`) is nearest to any point `q` of `b`. A nearest point `p` is
+/// singular (`∇f = 0`), a foot, where `(q − p) × ∇f(p) = 0`, or an end on a side of
+/// the clip box from which the curve, followed inward along its tangent `t`, gets no
+/// nearer: `(q − p) · t ≤ 0`. Interval forms over `b × n` that exclude each case prove it.
 /// (Distance bounds alone keep every node within the upper bound, a span of `√|b|`
 /// along a curve that bends away from `b`; this keeps a span of about `|b|`.)
 fn holds_no_foot(clip: &Aabb, b: &Aabb, n: &Aabb, normal: &[Interval; 2]) -> bool {
@@ -268,24 +263,30 @@ fn holds_no_foot(clip: &Aabb, b: &Aabb, n: &Aabb, normal: &[Interval; 2]) -> boo
     if !(dx * normal[1] - dy * normal[0]).excludes_zero() {
         return false;
     }
-    let c = clip;
     let tangent = [-normal[1], normal[0]];
-    // the sides the node reaches, by their inward normals
-    let sides = [
-        (n.min.x <= c.min.x, [1.0, 0.0]),
-        (n.max.x >= c.max.x, [-1.0, 0.0]),
-        (n.min.y <= c.min.y, [0.0, 1.0]),
-        (n.max.y >= c.max.y, [0.0, -1.0]),
-    ];
-    sides.iter().filter(|s| s.0).all(|&(_, inward)| {
-        let across = tangent[0].scale(inward[0]) + tangent[1].scale(inward[1]);
-        if !across.excludes_zero() {
-            return false; // the curve may run along the side
-        }
-        let sign = if across.lo > 0.0 { 1.0 } else { -1.0 };
-        let along = dx * tangent[0].scale(sign) + dy * tangent[1].scale(sign);
-        along.lo > 0.0
-    })
+    clip_sides(clip, n)
+        .iter()
+        .filter(|s| s.0)
+        .all(|&(_, inward)| {
+            let across = tangent[0].scale(inward[0]) + tangent[1].scale(inward[1]);
+            if !across.excludes_zero() {
+                return false; // the curve may run along the side
+            }
+            let sign = if across.lo > 0.0 { 1.0 } else { -1.0 };
+            let along = dx * tangent[0].scale(sign) + dy * tangent[1].scale(sign);
+            along.lo > 0.0
+        })
+}
+
+/// The clip box's four sides by their inward normals, each with whether box `n`
+/// reaches it.
+fn clip_sides(clip: &Aabb, n: &Aabb) -> [(bool, [f64; 2]); 4] {
+    [
+        (n.min.x <= clip.min.x, [1.0, 0.0]),
+        (n.max.x >= clip.max.x, [-1.0, 0.0]),
+        (n.min.y <= clip.min.y, [0.0, 1.0]),
+        (n.max.y >= clip.max.y, [0.0, -1.0]),
+    ]
 }
 
 /// The length of a box's diagonal.

@@ -54,8 +54,26 @@ pub trait DistanceField: Send + Sync {
     /// An enclosure of the field's gradient over `b`, if the field can give one.
     fn gradient_bound(&self, s: &Self::State, b: &Aabb) -> Option<[Interval; 2]>;
 
+    /// Whether [`restrict`](Self::restrict) narrows a state more cheaply than
+    /// [`state`](Self::state) builds one; the engine then keeps the states of its leaves
+    /// for the scan of their sides.
+    fn restricts(&self) -> bool {
+        false
+    }
+
+    /// The state over `to`, a box inside the one `s` was made for (by default afresh).
+    fn restrict(&self, _s: &Self::State, to: &Aabb) -> Self::State {
+        self.state(to)
+    }
+
     /// The field at `q`, as accurate as f64 allows.
     fn value(&self, q: Point) -> f64;
+
+    /// The field at `q`, a point of the box that `s` was made for; fields whose state
+    /// narrows the search for the value override it (by default [`value`](Self::value)).
+    fn value_in(&self, _s: &Self::State, q: Point) -> f64 {
+        self.value(q)
+    }
 
     /// The field's gradient at `q`.
     fn gradient(&self, q: Point) -> Point;
@@ -251,9 +269,31 @@ macro_rules! delegate_to_families {
                 }
             }
 
+            fn restricts(&self) -> bool {
+                match self {
+                    $(SiteField::$variant(f) => f.restricts(),)*
+                }
+            }
+
+            fn restrict(&self, s: &FieldState, to: &Aabb) -> FieldState {
+                match (self, s) {
+                    $((SiteField::$variant(f), FieldState::$variant(s)) => {
+                        FieldState::$variant(f.restrict(s, to).into())
+                    })*
+                    _ => self.state(to),
+                }
+            }
+
             fn value(&self, q: Point) -> f64 {
                 match self {
                     $(SiteField::$variant(f) => f.value(q),)*
+                }
+            }
+
+            fn value_in(&self, s: &FieldState, q: Point) -> f64 {
+                match (self, s) {
+                    $((SiteField::$variant(f), FieldState::$variant(s)) => f.value_in(s, q),)*
+                    _ => self.value(q),
                 }
             }
 

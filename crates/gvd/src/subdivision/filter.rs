@@ -13,14 +13,31 @@ use crate::site::{DistanceField, PairBound};
 /// quadratic in their number).
 const PAIRWISE_LIMIT: usize = 6;
 
+/// The sites that may be nearest somewhere in a box, and, when two remain and the
+/// filter compared them, its bound of `f_first − f_second` (to be reused by the
+/// certificates rather than computed again).
+pub struct Envelope<S> {
+    pub sites: Vec<(u32, S)>,
+    pub pair: Option<PairBound>,
+}
+
+impl<S> Envelope<S> {
+    /// The bound of `f_first − f_second` of the two sites left: the filter's own, or
+    /// computed now.
+    pub fn pair_of_two<F: DistanceField<State = S>>(&self, fields: &[F], b: &Aabb) -> PairBound {
+        self.pair
+            .unwrap_or_else(|| pair(fields, &self.sites, 0, 1, b))
+    }
+}
+
 /// Keeps the sites that may be nearest somewhere in `b` (their order is kept).
 pub fn lower_envelope<F: DistanceField>(
     fields: &[F],
     b: &Aabb,
     mut sites: Vec<(u32, F::State)>,
-) -> Vec<(u32, F::State)> {
+) -> Envelope<F::State> {
     if sites.len() <= 1 {
-        return sites;
+        return Envelope { sites, pair: None };
     }
     let bounds: Vec<Interval> = sites
         .iter()
@@ -32,6 +49,7 @@ pub fn lower_envelope<F: DistanceField>(
         k += 1;
         bounds[k - 1].lo <= upper
     });
+    let mut kept_pair = None;
     if sites.len() > 1 && sites.len() <= PAIRWISE_LIMIT {
         // the site with the least upper bound dominates most others; test against it first
         let best = (0..sites.len())
@@ -44,9 +62,22 @@ pub fn lower_envelope<F: DistanceField>(
                 ua.total_cmp(&uc)
             })
             .unwrap_or(0);
-        let dominated: Vec<bool> = (0..sites.len())
-            .map(|a| a != best && pair(fields, &sites, a, best, b).value.lo > 0.0)
+        let against_best: Vec<Option<PairBound>> = (0..sites.len())
+            .map(|a| (a != best).then(|| pair(fields, &sites, a, best, b)))
             .collect();
+        let dominated: Vec<bool> = against_best
+            .iter()
+            .map(|p| p.as_ref().is_some_and(|p| p.value.lo > 0.0))
+            .collect();
+        if dominated.iter().filter(|d| !**d).count() == 2 {
+            // the two left are `best` and one other, compared above
+            let other = (0..sites.len()).find(|&a| a != best && !dominated[a]);
+            kept_pair = other.and_then(|a| {
+                let p = against_best[a]?;
+                // f_a − f_best, as f_first − f_second
+                Some(if a < best { p } else { negated(p) })
+            });
+        }
         let mut k = 0;
         sites.retain(|_| {
             k += 1;
@@ -65,7 +96,16 @@ pub fn lower_envelope<F: DistanceField>(
             });
         }
     }
-    sites
+    let pair = if sites.len() == 2 { kept_pair } else { None };
+    Envelope { sites, pair }
+}
+
+/// The bound of `−h` from that of `h` (exact: intervals negate without rounding).
+fn negated(p: PairBound) -> PairBound {
+    PairBound {
+        value: -p.value,
+        gradient: p.gradient.map(|g| [-g[0], -g[1]]),
+    }
 }
 
 fn kept_upper<F: DistanceField>(fields: &[F], site: &(u32, F::State), b: &Aabb, i: usize) -> f64 {
@@ -121,9 +161,10 @@ pub fn monotone(p: &PairBound) -> Option<bool> {
 }
 
 /// Tests the certificate for a box with two or three sites.
-pub fn certify<F: DistanceField>(fields: &[F], b: &Aabb, sites: &[(u32, F::State)]) -> Certificate {
+pub fn certify<F: DistanceField>(fields: &[F], b: &Aabb, env: &Envelope<F::State>) -> Certificate {
+    let sites = &env.sites;
     match sites.len() {
-        2 => match monotone(&pair(fields, sites, 0, 1, b)) {
+        2 => match monotone(&env.pair_of_two(fields, b)) {
             Some(over_y) => Certificate::Monotone { over_y },
             None => Certificate::None,
         },

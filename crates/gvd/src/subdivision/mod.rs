@@ -273,7 +273,10 @@ pub(crate) fn run_watched<F: DistanceField>(
         parallel: params.parallel,
         budget: &budget,
     };
-    let leaves = tree::subdivide(fields, &lattice, &tree_params);
+    let tree::Leaves {
+        leaves,
+        states: leaf_states,
+    } = tree::subdivide(fields, &lattice, &tree_params);
     budget.check(eps)?;
     let t_subdivide = start.elapsed().as_secs_f64();
 
@@ -285,7 +288,39 @@ pub(crate) fn run_watched<F: DistanceField>(
             [Some(a), None] | [None, Some(a)] => leaves[a as usize].sites.clone(),
             [None, None] => Vec::new(),
         };
-        segments::transitions(fields, &cands, s.from, s.to, scan_len)
+        if cands.len() < 2 {
+            return Vec::new();
+        }
+        // the states over the side, narrowed from the smaller leaf's where it kept them
+        let side = segments::segment_box(s.from, s.to);
+        let from = s
+            .leaves
+            .iter()
+            .flatten()
+            .map(|&l| l as usize)
+            .filter(|&l| !leaf_states[l].is_empty())
+            .min_by(|&a, &b| {
+                leaves[a]
+                    .aabb
+                    .longest_side()
+                    .total_cmp(&leaves[b].aabb.longest_side())
+            });
+        let sites = cands
+            .iter()
+            .map(|&c| {
+                let field = &fields[c as usize];
+                let kept = from.and_then(|l| {
+                    let k = leaves[l].sites.binary_search(&c).ok()?;
+                    Some(&leaf_states[l][k])
+                });
+                let state = match kept {
+                    Some(st) if field.restricts() => field.restrict(st, &side),
+                    _ => field.state(&side),
+                };
+                (c, state)
+            })
+            .collect();
+        segments::transitions(fields, sites, s.from, s.to, scan_len)
     };
     let transitions: Vec<Vec<segments::Transition>> =
         map(params.parallel, &segs.segments, scan_one);
@@ -317,7 +352,12 @@ pub(crate) fn run_watched<F: DistanceField>(
             }
         }
         if !budget.exhausted() {
-            Resolver::new(fields, tol, &budget, l as u32).resolve_leaf(leaf, ports, &mut out);
+            Resolver::new(fields, tol, &budget, l as u32).resolve_leaf(
+                leaf,
+                &leaf_states[l],
+                ports,
+                &mut out,
+            );
         }
         out
     };

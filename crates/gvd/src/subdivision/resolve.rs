@@ -7,7 +7,7 @@
 
 use super::budget::Budget;
 use super::filter::{self, Certificate};
-use super::segments::{label, transitions};
+use super::segments::{label, transitions_of};
 use super::trace;
 use super::tree::Leaf;
 use crate::geom::{Aabb, Axis, Point};
@@ -91,19 +91,43 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
         }
     }
 
-    /// Resolves a leaf of the subdivision, using the certificate it stopped with.
-    pub fn resolve_leaf(&mut self, leaf: &Leaf, ports: Vec<Port>, out: &mut LeafOutput) {
+    /// Resolves a leaf of the subdivision, using the certificate it stopped with and the
+    /// states of its sites where the subdivision kept them (`kept`, else empty).
+    pub fn resolve_leaf(
+        &mut self,
+        leaf: &Leaf,
+        kept: &[F::State],
+        ports: Vec<Port>,
+        out: &mut LeafOutput,
+    ) {
         if let Certificate::Monotone { over_y } = leaf.certificate {
             self.join_monotone(&leaf.aabb, &ports, over_y, out);
         } else {
-            self.resolve(leaf.aabb, &leaf.sites, ports, out);
+            let kept = (kept.len() == leaf.sites.len()).then_some(kept);
+            self.resolve(leaf.aabb, &leaf.sites, kept, ports, out);
         }
     }
 
-    /// Resolves the box `b` with candidate sites `sites` (sorted) and boundary `ports`.
-    pub fn resolve(&mut self, b: Aabb, sites: &[u32], ports: Vec<Port>, out: &mut LeafOutput) {
-        if sites.len() <= 1 || (ports.is_empty() && self.no_island(b, sites)) {
+    /// Resolves the box `b` with candidate sites `sites` (sorted), their states over `b`
+    /// if known, and boundary `ports`.
+    pub fn resolve(
+        &mut self,
+        b: Aabb,
+        sites: &[u32],
+        kept: Option<&[F::State]>,
+        ports: Vec<Port>,
+        out: &mut LeafOutput,
+    ) {
+        if sites.len() <= 1 {
             return;
+        }
+        let mut envelope = None;
+        if ports.is_empty() {
+            let e = self.envelope(&b, sites, kept);
+            if self.no_island(&b, &e) {
+                return;
+            }
+            envelope = Some(e);
         }
         if !self.budget.take_box() {
             return;
@@ -112,20 +136,17 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
             self.fallback(b, sites, &ports, out);
             return;
         }
-        let states: Vec<(u32, F::State)> = sites
-            .iter()
-            .map(|&s| (s, self.fields[s as usize].state(&b)))
-            .collect();
-        let active = filter::lower_envelope(self.fields, &b, states);
+        let envelope = envelope.unwrap_or_else(|| self.envelope(&b, sites, kept));
+        let active = &envelope.sites;
         let ids: Vec<u32> = active.iter().map(|s| s.0).collect();
         let labels_known = ports.iter().all(|p| p.pair.iter().all(|l| ids.contains(l)));
         if labels_known {
-            match filter::certify(self.fields, &b, &active) {
+            match filter::certify(self.fields, &b, &envelope) {
                 Certificate::Monotone { over_y } => {
                     self.join_monotone(&b, &ports, over_y, out);
                     return;
                 }
-                Certificate::SingleVertex if self.try_vertex(&b, &active, &ports, out) => return,
+                Certificate::SingleVertex if self.try_vertex(&b, active, &ports, out) => return,
                 _ => {}
             }
             if active.len() <= 1 && ports.is_empty() {
@@ -135,17 +156,29 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
         self.split(b, &ids, ports, out);
     }
 
+    /// The lower envelope over `b` of `sites`, with their states `kept` or built afresh.
+    fn envelope(
+        &self,
+        b: &Aabb,
+        sites: &[u32],
+        kept: Option<&[F::State]>,
+    ) -> filter::Envelope<F::State> {
+        let states: Vec<(u32, F::State)> = match kept {
+            Some(kept) => sites.iter().copied().zip(kept.iter().cloned()).collect(),
+            None => sites
+                .iter()
+                .map(|&s| (s, self.fields[s as usize].state(b)))
+                .collect(),
+        };
+        filter::lower_envelope(self.fields, b, states)
+    }
+
     /// With no port, a cell can still lie wholly inside the box (an island); it cannot
     /// when the box holds two sites whose bisector is monotone.
-    fn no_island(&self, b: Aabb, sites: &[u32]) -> bool {
-        let states: Vec<(u32, F::State)> = sites
-            .iter()
-            .map(|&s| (s, self.fields[s as usize].state(&b)))
-            .collect();
-        let active = filter::lower_envelope(self.fields, &b, states);
-        active.len() <= 1
+    fn no_island(&self, b: &Aabb, envelope: &filter::Envelope<F::State>) -> bool {
+        envelope.sites.len() <= 1
             || matches!(
-                filter::certify(self.fields, &b, &active),
+                filter::certify(self.fields, b, envelope),
                 Certificate::Monotone { .. }
             )
     }
@@ -279,7 +312,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
             Axis::X => (Point::new(mid, b.min.y), Point::new(mid, b.max.y)),
             Axis::Y => (Point::new(b.min.x, mid), Point::new(b.max.x, mid)),
         };
-        let inner: Vec<Port> = transitions(self.fields, sites, p0, p1, self.tol.scan)
+        let inner: Vec<Port> = transitions_of(self.fields, sites, p0, p1, self.tol.scan)
             .into_iter()
             .map(|t| {
                 let id = PortId::Inner {
@@ -299,8 +332,8 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
             .partition(|p| self.goes_lower(&b, p, axis, mid));
         lower.extend_from_slice(&inner);
         upper.extend(inner);
-        self.resolve(lo, sites, lower, out);
-        self.resolve(hi, sites, upper, out);
+        self.resolve(lo, sites, None, lower, out);
+        self.resolve(hi, sites, None, upper, out);
     }
 
     /// Whether port `p` of box `b` belongs to the lower half when `b` is split at `mid`

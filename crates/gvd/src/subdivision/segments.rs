@@ -153,40 +153,53 @@ fn merge_line(
 /// The nearest of `cands` at `q`; ties go to the smallest site index, so every caller
 /// labels a point alike whatever superset of the true nearest sites it passes.
 pub fn label<F: DistanceField>(fields: &[F], cands: &[u32], q: Point) -> u32 {
-    let mut best = cands[0];
-    let mut best_v = fields[best as usize].value(q);
-    for &c in &cands[1..] {
-        let v = fields[c as usize].value(q);
-        if v < best_v || (v == best_v && c < best) {
-            best = c;
-            best_v = v;
-        }
-    }
-    best
+    nearest_of(cands.iter().map(|&c| (c, fields[c as usize].value(q))))
 }
 
-/// The label changes along the segment `p0 → p1` among the sorted site list `cands`,
-/// in order from `p0`. Sub-segments are discarded by the same lower-envelope filter as
-/// boxes; label changes are isolated to `min_len` and then refined to full precision.
+/// [`label`] among `sites` at a point `q` of the box their states were made for.
+fn label_in<F: DistanceField>(fields: &[F], sites: &[(u32, F::State)], q: Point) -> u32 {
+    nearest_of(
+        sites
+            .iter()
+            .map(|(c, s)| (*c, fields[*c as usize].value_in(s, q))),
+    )
+}
+
+/// The site of least value, the smallest index among equals.
+fn nearest_of(values: impl Iterator<Item = (u32, f64)>) -> u32 {
+    let mut best = (u32::MAX, f64::INFINITY);
+    for (c, v) in values {
+        if best.0 == u32::MAX || v < best.1 || (v == best.1 && c < best.0) {
+            best = (c, v);
+        }
+    }
+    best.0
+}
+
+/// The box of the segment `p0 → p1` (without extent across an axis-parallel one).
+pub fn segment_box(p0: Point, p1: Point) -> Aabb {
+    Aabb::new(
+        Point::new(p0.x.min(p1.x), p0.y.min(p1.y)),
+        Point::new(p0.x.max(p1.x), p0.y.max(p1.y)),
+    )
+}
+
+/// The label changes along the segment `p0 → p1` among the sorted sites `sites`, with
+/// their states over [`segment_box`], in order from `p0`. Sub-segments are discarded by
+/// the same lower-envelope filter as boxes; label changes are isolated to `min_len` and
+/// then refined to full precision.
 pub fn transitions<F: DistanceField>(
     fields: &[F],
-    cands: &[u32],
+    sites: Vec<(u32, F::State)>,
     p0: Point,
     p1: Point,
     min_len: f64,
 ) -> Vec<Transition> {
     let mut out = Vec::new();
-    if cands.len() < 2 {
+    if sites.len() < 2 {
         return out;
     }
-    let b = Aabb::new(
-        Point::new(p0.x.min(p1.x), p0.y.min(p1.y)),
-        Point::new(p0.x.max(p1.x), p0.y.max(p1.y)),
-    );
-    let sites: Vec<(u32, F::State)> = cands
-        .iter()
-        .map(|&c| (c, fields[c as usize].state(&b)))
-        .collect();
+    let b = segment_box(p0, p1);
     let scan = Scan {
         fields,
         p0,
@@ -194,10 +207,26 @@ pub fn transitions<F: DistanceField>(
         len: p0.dist(p1),
         min_len,
     };
-    let l0 = label(fields, cands, p0);
-    let l1 = label(fields, cands, p1);
+    let l0 = label_in(fields, &sites, p0);
+    let l1 = label_in(fields, &sites, p1);
     scan.rec(0.0, 1.0, l0, l1, b, sites, &mut out);
     out
+}
+
+/// [`transitions`] with the states of `cands` built afresh.
+pub fn transitions_of<F: DistanceField>(
+    fields: &[F],
+    cands: &[u32],
+    p0: Point,
+    p1: Point,
+    min_len: f64,
+) -> Vec<Transition> {
+    let b = segment_box(p0, p1);
+    let sites = cands
+        .iter()
+        .map(|&c| (c, fields[c as usize].state(&b)))
+        .collect();
+    transitions(fields, sites, p0, p1, min_len)
 }
 
 struct Scan<'a, F> {
@@ -228,12 +257,16 @@ impl<F: DistanceField> Scan<'_, F> {
         sites: Vec<(u32, F::State)>,
         out: &mut Vec<Transition>,
     ) {
-        let sites = super::filter::lower_envelope(self.fields, &b, sites);
-        if sites.len() <= 1 && l0 == l1 {
+        let short = (t1 - t0) * self.len <= self.min_len;
+        if short && l0 == l1 {
+            return; // changes closer than `min_len` are not looked for
+        }
+        let envelope = super::filter::lower_envelope(self.fields, &b, sites);
+        if envelope.sites.len() <= 1 && l0 == l1 {
             return;
         }
-        let short = (t1 - t0) * self.len <= self.min_len;
-        let pair = (sites.len() == 2).then(|| super::filter::pair(self.fields, &sites, 0, 1, &b));
+        let pair = (envelope.sites.len() == 2).then(|| envelope.pair_of_two(self.fields, &b));
+        let sites = envelope.sites;
         if let Some(p) = &pair {
             // an exact tie along the whole piece (a bisector lying on a box side, as in
             // grids): the labels follow the tie rule, so there is nothing to find inside
@@ -260,15 +293,26 @@ impl<F: DistanceField> Scan<'_, F> {
         });
         if short || simple || sites.len() <= 1 {
             if l0 != l1 {
-                let cands: Vec<u32> = sites.iter().map(|s| s.0).collect();
-                self.refine(t0, t1, l0, l1, &cands, out);
+                // the two labels join the sites if the filter dropped them (rounding)
+                let mut with: Vec<(u32, Option<&F::State>)> =
+                    sites.iter().map(|(c, s)| (*c, Some(s))).collect();
+                for l in [l0, l1] {
+                    if let Err(k) = with.binary_search_by_key(&l, |s| s.0) {
+                        with.insert(k, (l, None));
+                    }
+                }
+                self.refine(t0, t1, l0, l1, &with, out);
             }
             return;
         }
         let tm = 0.5 * (t0 + t1);
         let pm = self.at(tm);
-        let cands: Vec<u32> = sites.iter().map(|s| s.0).collect();
-        let lm = label(self.fields, &cands, pm);
+        let lm = label_in(self.fields, &sites, pm);
+        let settled =
+            |ta: f64, tb: f64, la: u32, lb: u32| (tb - ta) * self.len <= self.min_len && la == lb;
+        if settled(t0, tm, l0, lm) && settled(tm, t1, lm, l1) {
+            return; // both halves end at once (see the top): no states to split
+        }
         let axis = if b.width() >= b.height() {
             crate::geom::Axis::X
         } else {
@@ -294,31 +338,36 @@ impl<F: DistanceField> Scan<'_, F> {
         self.rec(tm, t1, lm, l1, second.0, second.1, out);
     }
 
-    /// Bisection on the label between `t0` (label `l0`) and `t1` (label `l1`); a third
-    /// label met on the way splits the search in two.
+    /// Bisection on the label between `t0` (label `l0`) and `t1` (label `l1`) among
+    /// `sites` (with their states over the piece, or `None`); a third label met on the
+    /// way splits the search in two.
+    #[allow(clippy::too_many_arguments)]
     fn refine(
         &self,
         mut t0: f64,
         mut t1: f64,
         l0: u32,
         l1: u32,
-        cands: &[u32],
+        sites: &[(u32, Option<&F::State>)],
         out: &mut Vec<Transition>,
     ) {
-        let cands: Vec<u32> = {
-            let mut c = cands.to_vec();
-            for l in [l0, l1] {
-                if let Err(k) = c.binary_search(&l) {
-                    c.insert(k, l);
-                }
-            }
-            c
+        let value = |(c, s): (u32, Option<&F::State>), q: Point| {
+            let f = &self.fields[c as usize];
+            s.map_or_else(|| f.value(q), |s| f.value_in(s, q))
         };
-        if cands.len() == 2 {
+        let site = |l: u32| {
+            sites
+                .iter()
+                .find(|s| s.0 == l)
+                .copied()
+                .unwrap_or((l, None))
+        };
+        if sites.len() == 2 {
             // one bisector: its root, by regula falsi
+            let (a, b) = (site(l0), site(l1));
             let h = |t: f64| {
                 let q = self.at(t);
-                self.fields[l0 as usize].value(q) - self.fields[l1 as usize].value(q)
+                value(a, q) - value(b, q)
             };
             let (h0, h1) = (h(t0), h(t1));
             if h0 <= 0.0 && h1 >= 0.0 && h0 != h1 {
@@ -335,14 +384,15 @@ impl<F: DistanceField> Scan<'_, F> {
             if tm <= t0 || tm >= t1 {
                 break;
             }
-            let lm = label(self.fields, &cands, self.at(tm));
+            let q = self.at(tm);
+            let lm = nearest_of(sites.iter().map(|&s| (s.0, value(s, q))));
             if lm == l0 {
                 t0 = tm;
             } else if lm == l1 {
                 t1 = tm;
             } else {
-                self.refine(t0, tm, l0, lm, &cands, out);
-                self.refine(tm, t1, lm, l1, &cands, out);
+                self.refine(t0, tm, l0, lm, sites, out);
+                self.refine(tm, t1, lm, l1, sites, out);
                 return;
             }
         }

@@ -133,9 +133,20 @@ pub struct Params<'a> {
     pub budget: &'a Budget,
 }
 
+/// The leaves of the subdivision, and the states of their sites where a leaf holds two
+/// or more sites whose fields [restrict](DistanceField::restricts) (else empty).
+pub struct Leaves<S> {
+    pub leaves: Vec<Leaf>,
+    pub states: Vec<Vec<S>>,
+}
+
 /// Runs Alg. 1 and returns the leaves in a deterministic order (depth-first, lower child
 /// first), whatever the number of threads.
-pub fn subdivide<F: DistanceField>(fields: &[F], lattice: &Lattice, params: &Params) -> Vec<Leaf> {
+pub fn subdivide<F: DistanceField>(
+    fields: &[F],
+    lattice: &Lattice,
+    params: &Params,
+) -> Leaves<F::State> {
     let root = lattice.root();
     let aabb = lattice.aabb(&root);
     let sites: Vec<(u32, F::State)> = fields
@@ -143,7 +154,10 @@ pub fn subdivide<F: DistanceField>(fields: &[F], lattice: &Lattice, params: &Par
         .enumerate()
         .map(|(i, f)| (i as u32, f.state(&aabb)))
         .collect();
-    let mut out = Vec::new();
+    let mut out = Leaves {
+        leaves: Vec::new(),
+        states: Vec::new(),
+    };
     recurse(fields, lattice, params, root, aabb, sites, &mut out);
     out
 }
@@ -155,32 +169,41 @@ fn recurse<F: DistanceField>(
     ib: IBox,
     aabb: Aabb,
     sites: Vec<(u32, F::State)>,
-    out: &mut Vec<Leaf>,
+    out: &mut Leaves<F::State>,
 ) {
     if !params.budget.take_box() {
         return;
     }
-    let sites = filter::lower_envelope(fields, &aabb, sites);
+    let envelope = filter::lower_envelope(fields, &aabb, sites);
     let size = aabb.longest_side();
-    let leaf = |sites: &[(u32, F::State)], certificate: Certificate, uncertified: bool| Leaf {
-        ib,
-        aabb,
-        sites: sites.iter().map(|s| s.0).collect(),
-        certificate,
-        uncertified,
+    let mut leaf = |sites: Vec<(u32, F::State)>, certificate: Certificate, uncertified: bool| {
+        out.leaves.push(Leaf {
+            ib,
+            aabb,
+            sites: sites.iter().map(|s| s.0).collect(),
+            certificate,
+            uncertified,
+        });
+        let keep = sites.len() >= 2 && sites.iter().any(|s| fields[s.0 as usize].restricts());
+        out.states.push(if keep {
+            sites.into_iter().map(|s| s.1).collect()
+        } else {
+            Vec::new()
+        });
     };
-    if sites.len() <= 1 {
-        out.push(leaf(&sites, Certificate::None, false));
+    if envelope.sites.len() <= 1 {
+        leaf(envelope.sites, Certificate::None, false);
         return;
     }
     let too_big = params.max_box.is_some_and(|m| size > m * (1.0 + 1e-9));
     if !too_big {
-        let certificate = filter::certify(fields, &aabb, &sites);
+        let certificate = filter::certify(fields, &aabb, &envelope);
         if certificate != Certificate::None {
-            out.push(leaf(&sites, certificate, false));
+            leaf(envelope.sites, certificate, false);
             return;
         }
     }
+    let sites = envelope.sites;
     let axis = if aabb.width() >= aabb.height() { 0 } else { 1 };
     let split = if size <= params.min_box && !too_big {
         None
@@ -188,7 +211,7 @@ fn recurse<F: DistanceField>(
         ib.split(axis)
     };
     let Some((li, ri, mid)) = split else {
-        out.push(leaf(&sites, Certificate::None, true));
+        leaf(sites, Certificate::None, true);
         return;
     };
     let at = lattice.point(mid, mid);
@@ -211,12 +234,16 @@ fn recurse<F: DistanceField>(
     let _ = fork; // one thread: the subtrees run in turn below
     #[cfg(feature = "parallel")]
     if fork {
-        let mut rout = Vec::new();
+        let mut rout = Leaves {
+            leaves: Vec::new(),
+            states: Vec::new(),
+        };
         rayon::join(
             || recurse(fields, lattice, params, li, la, left, out),
             || recurse(fields, lattice, params, ri, ra, right, &mut rout),
         );
-        out.append(&mut rout);
+        out.leaves.append(&mut rout.leaves);
+        out.states.append(&mut rout.states);
         return;
     }
     recurse(fields, lattice, params, li, la, left, out);

@@ -46,6 +46,8 @@ pub(super) struct Node {
     pub leaf: u32,
     /// A componentwise enclosure of `∇f` over the node's box.
     pub normal: [Interval; 2],
+    /// The unit vectors `∇f/|∇f|` over `normal` (`None` where it may hold 0).
+    pub unit_normal: Option<[Interval; 2]>,
 }
 
 /// What a leaf knows of the curve inside it.
@@ -241,6 +243,7 @@ impl Builder<'_> {
             count: kids.len() as u32,
             witness: witness.1,
             leaf: NONE,
+            unit_normal: super::direction(normal[0], normal[1]),
             normal,
         });
         Some(e.nodes.len() as u32 - 1)
@@ -330,6 +333,7 @@ impl Builder<'_> {
             count: 0,
             witness,
             leaf: e.leaves.len() as u32 - 1,
+            unit_normal: super::direction(normal[0], normal[1]),
             normal,
         });
         e.nodes.len() as u32 - 1

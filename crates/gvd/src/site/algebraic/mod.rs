@@ -189,7 +189,7 @@ impl AlgebraicField {
         if !inside || !side.excludes_zero() {
             return between;
         }
-        let Some(unit) = direction(normal[0], normal[1]) else {
+        let Some(unit) = node.unit_normal else {
             return between;
         };
         let sign = if side.lo > 0.0 { 1.0 } else { -1.0 };
@@ -240,12 +240,23 @@ impl AlgebraicField {
         round_up(far * (1.0 + 4.0 * f64::EPSILON))
     }
 
-    fn nearest(&self, q: Point) -> Option<nearest::Nearest> {
+    /// The nearest point of the curve to `q`, searched in the nodes `from`, which hold
+    /// every point of the curve that can be nearest to `q` (`None`: the whole curve).
+    fn nearest(&self, q: Point, from: Option<&[u32]>) -> Option<nearest::Nearest> {
+        let root: Vec<u32>;
+        let from = match from {
+            Some(nodes) => nodes,
+            None => {
+                root = self.enclosure.root().into_iter().collect();
+                &root
+            }
+        };
         nearest::nearest(
             &self.enclosure,
             &self.jet,
             &self.clip,
             q,
+            from,
             4.0 * self.leaf_size,
         )
     }
@@ -351,12 +362,29 @@ impl DistanceField for AlgebraicField {
         Some(s.gradient)
     }
 
+    fn restricts(&self) -> bool {
+        true
+    }
+
+    /// The nodes of `s` that may hold a nearest point for some point of `to`.
+    fn restrict(&self, s: &AlgebraicState, to: &Aabb) -> AlgebraicState {
+        self.refine(to, &s.nodes)
+    }
+
     fn value(&self, q: Point) -> f64 {
-        self.nearest(q).map_or(f64::INFINITY, |n| n.dist)
+        self.nearest(q, None).map_or(f64::INFINITY, |n| n.dist)
+    }
+
+    /// The search for the nearest point starts from the nodes that `s` kept (from the
+    /// root when they hold no sample).
+    fn value_in(&self, s: &AlgebraicState, q: Point) -> f64 {
+        self.nearest(q, Some(&s.nodes))
+            .or_else(|| self.nearest(q, None))
+            .map_or(f64::INFINITY, |n| n.dist)
     }
 
     fn gradient(&self, q: Point) -> Point {
-        match self.nearest(q) {
+        match self.nearest(q, None) {
             Some(n) if n.dist > 0.0 => (q - n.foot) * (1.0 / n.dist),
             _ => Point::new(0.0, 0.0),
         }

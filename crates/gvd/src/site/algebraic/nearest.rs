@@ -17,19 +17,25 @@ pub(super) struct Nearest {
     pub foot: Point,
 }
 
-/// The nearest point of the curve to `q`; `reach` bounds how far Newton's method may
-/// move from its start (a few leaf sizes). `None` when the enclosure holds no sample.
+/// The nearest point of the curve to `q`, searched in the enclosure nodes `from` (and
+/// their descendants), which must hold every point of the curve that can be nearest to
+/// `q`; `reach` bounds how far Newton's method may move from its start (a few leaf
+/// sizes). `None` when those nodes hold no sample.
 pub(super) fn nearest(
     e: &Enclosure,
     jet: &Jet,
     clip: &Aabb,
     q: Point,
+    from: &[u32],
     reach: f64,
 ) -> Option<Nearest> {
-    let root = e.root()?;
-    // depth-first, nearer child first (the tree is binary: one pending sibling a level)
-    let mut stack: Vec<(f64, u32)> = Vec::with_capacity(96);
-    stack.push((box_distance(q, &e.nodes[root as usize].bbox), root));
+    // depth-first, nearer node first
+    let mut stack: Vec<(f64, u32)> = Vec::with_capacity(96 + from.len());
+    stack.extend(
+        from.iter()
+            .map(|&n| (box_distance(q, &e.nodes[n as usize].bbox), n)),
+    );
+    stack.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
     let mut sample = (f64::INFINITY, q);
     let mut chord = (f64::INFINITY, q);
     let at_q = Aabb::new(q, q);

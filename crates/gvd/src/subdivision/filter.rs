@@ -96,8 +96,10 @@ pub fn lower_envelope<F: DistanceField>(
             });
         }
     }
-    let pair = if sites.len() == 2 { kept_pair } else { None };
-    Envelope { sites, pair }
+    Envelope {
+        sites,
+        pair: kept_pair,
+    }
 }
 
 /// The bound of `−h` from that of `h` (exact: intervals negate without rounding).

@@ -314,8 +314,8 @@ pub(crate) fn run_watched<F: DistanceField>(
                     Some(&leaf_states[l][k])
                 });
                 let state = match kept {
-                    Some(st) if field.restricts() => field.restrict(st, &side),
-                    _ => field.state(&side),
+                    Some(st) => field.restrict(st, &side),
+                    None => field.state(&side),
                 };
                 (c, state)
             })

@@ -246,6 +246,12 @@ impl<F: DistanceField> Scan<'_, F> {
         }
     }
 
+    /// A piece shorter than `min_len` whose ends have the same label: changes closer
+    /// than that are not looked for.
+    fn settled(&self, t0: f64, t1: f64, l0: u32, l1: u32) -> bool {
+        (t1 - t0) * self.len <= self.min_len && l0 == l1
+    }
+
     #[allow(clippy::too_many_arguments)]
     fn rec(
         &self,
@@ -257,10 +263,10 @@ impl<F: DistanceField> Scan<'_, F> {
         sites: Vec<(u32, F::State)>,
         out: &mut Vec<Transition>,
     ) {
-        let short = (t1 - t0) * self.len <= self.min_len;
-        if short && l0 == l1 {
-            return; // changes closer than `min_len` are not looked for
+        if self.settled(t0, t1, l0, l1) {
+            return;
         }
+        let short = (t1 - t0) * self.len <= self.min_len;
         let envelope = super::filter::lower_envelope(self.fields, &b, sites);
         if envelope.sites.len() <= 1 && l0 == l1 {
             return;
@@ -308,10 +314,8 @@ impl<F: DistanceField> Scan<'_, F> {
         let tm = 0.5 * (t0 + t1);
         let pm = self.at(tm);
         let lm = label_in(self.fields, &sites, pm);
-        let settled =
-            |ta: f64, tb: f64, la: u32, lb: u32| (tb - ta) * self.len <= self.min_len && la == lb;
-        if settled(t0, tm, l0, lm) && settled(tm, t1, lm, l1) {
-            return; // both halves end at once (see the top): no states to split
+        if self.settled(t0, tm, l0, lm) && self.settled(tm, t1, lm, l1) {
+            return; // no states to split for halves that end at once
         }
         let axis = if b.width() >= b.height() {
             crate::geom::Axis::X

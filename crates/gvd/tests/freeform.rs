@@ -239,6 +239,69 @@ fn medial_axis_of_a_bezier_domain_stays_inside_and_is_equidistant() {
     }
 }
 
+/// The centre of the circle through `a`, `b`, `c`.
+fn circumcentre(a: Point, b: Point, c: Point) -> Point {
+    let (b, c) = (b - a, c - a);
+    let d = 2.0 * b.cross(c);
+    let (bb, cc) = (b.dot(b), c.dot(c));
+    a + Point::new(c.y * bb - b.y * cc, b.x * cc - c.x * bb) * (1.0 / d)
+}
+
+#[test]
+fn deep_concavity_axis_ends_at_centres_of_curvature_and_verify_checks_it() {
+    let sc = scene("freeform-deep-concavity-medial_axis.json");
+    let d = run(&sc, Engine::Freeform);
+    let eps = sc.epsilon();
+    // the axis' free ends are the centres of curvature at the curve's curvature
+    // maxima: the circle through three dense samples about each end's foot
+    let curve = dense(&sc.sites()[0].kind, 200_000);
+    let ends: Vec<_> = d.vertices.iter().filter(|v| v.sites.len() == 2).collect();
+    assert_eq!(ends.len(), 2, "{:?}", d.vertices);
+    for v in ends {
+        let (k, _) = curve
+            .iter()
+            .enumerate()
+            .map(|(k, p)| (k, p.dist(v.at)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap();
+        let n = curve.len() - 1; // the last point repeats the first
+        let at = |j: isize| curve[(k as isize + j).rem_euclid(n as isize) as usize];
+        // the tightest circle through samples 100 apart near the foot: the curvature
+        // maximum
+        let centre = (-3000..=3000)
+            .map(|j| circumcentre(at(j - 100), at(j), at(j + 100)))
+            .zip((-3000..=3000).map(at))
+            .min_by(|a, b| a.0.dist(a.1).total_cmp(&b.0.dist(b.1)))
+            .unwrap()
+            .0;
+        assert!(centre.dist(v.at) < 0.5 * eps, "{:?} vs {centre:?}", v.at);
+    }
+    // `gvd verify` passes the diagram, and fails it moved by 10ε or with an end
+    // pushed 10ε beyond its centre of curvature
+    let verified = |d: &VoronoiComplex| gvd::verify(&sc, d, &Default::default()).unwrap();
+    let report = verified(&d);
+    assert!(report.passed, "{:?}", report.problems);
+    let mut moved = d.clone();
+    let shift = Point::new(10.0 * eps, 0.0);
+    moved
+        .edges
+        .iter_mut()
+        .for_each(|e| e.points.iter_mut().for_each(|p| *p = *p + shift));
+    moved.vertices.iter_mut().for_each(|v| v.at = v.at + shift);
+    assert!(!verified(&moved).passed);
+    let mut longer = d.clone();
+    let edge = &mut longer.edges[0];
+    let (last, before) = (
+        edge.points[edge.points.len() - 1],
+        edge.points[edge.points.len() - 20],
+    );
+    let beyond = last + (last - before) * (10.0 * eps / last.dist(before));
+    edge.points.push(beyond);
+    let end = edge.to.expect("the axis ends at a vertex");
+    longer.vertices[end].at = beyond;
+    assert!(!verified(&longer).passed);
+}
+
 #[test]
 fn a_bspline_with_an_interior_cusp_gets_a_corner_and_its_point_bisector() {
     // a cubic with a triple interior knot: a C0 corner at the knot (pointing at the

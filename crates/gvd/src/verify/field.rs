@@ -53,6 +53,57 @@ pub(super) enum Field {
     Pieces(Vec<Parametric>),
 }
 
+/// One branch of a curved feature's distance at a point: a local minimum along it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Branch {
+    /// the distance to the foot
+    pub value: f64,
+    /// the nearest point of this branch
+    pub foot: Point,
+    /// the centre of curvature at the foot, where the curve bends
+    pub center: Option<Point>,
+    /// for a free-form field: the piece (its index in the field) and the foot's parameter
+    pub param: Option<(usize, f64)>,
+}
+
+impl Branch {
+    /// The unit vector from the foot towards `q`: the gradient of this branch's distance.
+    pub(super) fn gradient(&self, q: Point) -> Point {
+        let d = q - self.foot;
+        let n = d.norm();
+        if n > 0.0 {
+            d * (1.0 / n)
+        } else {
+            d
+        }
+    }
+}
+
+/// How far `q` is from a point where the `m` nearest `branches` of one curved feature
+/// tie (first order: their values' spread over the least difference of their unit
+/// gradients), or, for `m = 2`, from the centre of curvature at the nearest foot,
+/// where such a ridge ends as its two branches merge. Infinite where neither applies.
+pub(super) fn ridge_error(q: Point, branches: &[Branch], m: usize) -> f64 {
+    let mut e = f64::INFINITY;
+    if m >= 2 && branches.len() >= m {
+        let near = &branches[..m];
+        let spread = near[m - 1].value - near[0].value;
+        let mut separation = f64::INFINITY;
+        for (i, a) in near.iter().enumerate() {
+            for b in &near[i + 1..] {
+                separation = separation.min(a.gradient(q).dist(b.gradient(q)));
+            }
+        }
+        e = spread / separation.max(1e-12);
+    }
+    if m == 2 {
+        if let Some(c) = branches.first().and_then(|b| b.center) {
+            e = e.min(c.dist(q));
+        }
+    }
+    e
+}
+
 /// How far the field can drop near its anchor: `field(q) ≥ lower(|q − anchor|)`,
 /// non-decreasing in the distance, for the nearest-site search.
 #[derive(Clone, Copy, Debug)]
@@ -169,11 +220,44 @@ impl Field {
         Field::Chain { segs, lo, hi }
     }
 
-    /// The centre of curvature of a curved field (an arc's centre), if it has one.
-    pub(super) fn curvature_center(&self) -> Option<Point> {
+    /// The branches at `q` of a curved feature's distance whose values are within
+    /// `slack` of the least, nearest first: an arc has one (about its centre), a
+    /// free-form piece one per distinct local minimum along it (with the centre of
+    /// curvature at its foot); other fields have none. Two branches tie on the
+    /// feature's own ridge (its self-bisector), which ends at a centre of curvature.
+    pub(super) fn branches(&self, q: Point, slack: f64) -> Vec<Branch> {
         match *self {
-            Field::Arc { c, .. } => Some(c),
-            _ => None,
+            Field::Arc { c, .. } => match self.foot(q) {
+                Some(foot) => vec![Branch {
+                    value: q.dist(foot),
+                    foot,
+                    center: Some(c),
+                    param: None,
+                }],
+                None => Vec::new(),
+            },
+            Field::Pieces(ref pieces) => {
+                let mut all: Vec<Branch> = pieces
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(k, p)| {
+                        p.local_feet(q, slack)
+                            .into_iter()
+                            .map(move |(value, foot, t)| Branch {
+                                value,
+                                foot,
+                                center: p.curvature_center(t),
+                                param: Some((k, t)),
+                            })
+                    })
+                    .collect();
+                all.sort_by(|a, b| a.value.total_cmp(&b.value));
+                if let Some(least) = all.first().map(|b| b.value) {
+                    all.retain(|b| b.value <= least + slack);
+                }
+                all
+            }
+            _ => Vec::new(),
         }
     }
 

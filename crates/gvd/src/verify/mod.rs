@@ -181,9 +181,10 @@ struct Checker<'a> {
     edges: Vec<GoodEdge>,
     /// each vertex's generators (deduplicated), `None` if invalid
     vgens: Vec<Option<Vec<usize>>>,
-    /// each vertex's curved generators listed more than once (two branches of one
-    /// curve: with a single branch the vertex must be its centre of curvature)
-    vtwice: Vec<Vec<usize>>,
+    /// each vertex's curved generators listed more than once, with how often (that
+    /// many branches of one curve tie there; where one is left, the vertex ends the
+    /// curve's ridge at a centre of curvature)
+    vtwice: Vec<Vec<(usize, usize)>>,
     /// `1e-12` of the scene's size (feet this close to a corner are at the corner)
     tiny: f64,
     errors: Vec<String>,

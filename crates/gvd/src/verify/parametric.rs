@@ -123,31 +123,131 @@ impl Parametric {
 
     /// The nearest point of the piece to `q`.
     pub(super) fn foot(&self, q: Point) -> Point {
+        self.local_feet(q, 0.0)
+            .first()
+            .map_or_else(|| self.at(self.t0), |f| f.1)
+    }
+
+    /// The distinct local minima of the distance from `q` along the piece whose
+    /// distances are within `slack` of the least, nearest first, as `(distance, foot,
+    /// parameter)`: Newton from every sample within reach (`d_min + spacing + slack`,
+    /// `d_min` the nearest sample's distance) that is a local minimum of the sampled
+    /// distance (a foot lies between two samples, one of which is at least as near as
+    /// its other neighbour). Two feet are one minimum unless the distance rises
+    /// between them, on either way round if the piece is a loop (where the distance is
+    /// flat, Newton stops at points about the square root of rounding apart).
+    pub(super) fn local_feet(&self, q: Point, slack: f64) -> Vec<(f64, Point, f64)> {
         let dist: Vec<f64> = self.samples.iter().map(|s| q.dist(s.0)).collect();
-        let reach = dist.iter().fold(f64::INFINITY, |a, &b| a.min(b)) + self.spacing;
-        let mut best = (f64::INFINITY, self.at(self.t0));
+        let reach = dist.iter().fold(f64::INFINITY, |a, &b| a.min(b)) + self.spacing + slack;
+        let extent = self.bounds.min.dist(self.bounds.max);
+        let loop_range = (self.at(self.t0).dist(self.at(self.t1)) <= 1e-12 * extent)
+            .then_some(self.t1 - self.t0);
+        let rises_between = |a: &(f64, Point, f64), b: &(f64, Point, f64)| {
+            let floor = a.0.max(b.0) + 1e-13 * (extent + a.0);
+            let mid = 0.5 * (a.2 + b.2);
+            let rises = |t: f64| q.dist(self.at(t)) > floor;
+            let across = |range: f64| {
+                let t = mid + 0.5 * range;
+                rises(if t > self.t1 { t - range } else { t })
+            };
+            rises(mid) && loop_range.is_none_or(across)
+        };
+        let mut feet: Vec<(f64, Point, f64)> = Vec::new();
         for (k, &(p, t)) in self.samples.iter().enumerate() {
-            // starts: the samples within reach that are local minima of the distance
-            // along the piece (the foot lies between two samples, one of which is at
-            // least as near as its other neighbour)
             let before = k.checked_sub(1).map_or(f64::INFINITY, |j| dist[j]);
             let after = dist.get(k + 1).copied().unwrap_or(f64::INFINITY);
             if dist[k] <= reach && dist[k] <= before.max(after) {
-                let (d, f) = self.descend(q, p, t);
-                if d < best.0 {
-                    best = (d, f);
+                let found = self.descend(q, p, t);
+                match feet.iter_mut().find(|f| !rises_between(f, &found)) {
+                    Some(f) if found.0 < f.0 => *f = found,
+                    Some(_) => {}
+                    None => feet.push(found),
                 }
             }
         }
-        best.1
+        feet.sort_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some(least) = feet.first().map(|f| f.0) {
+            feet.retain(|f| f.0 <= least + slack);
+        }
+        feet
+    }
+
+    /// The ridge point over the foot at parameter `t`: `C(t) + R·n`, `n` the unit
+    /// normal on the `side` (±1) of the left normal, `R` the radius of the largest
+    /// disc on that side touching the piece at `C(t)` that holds no point of it
+    /// (discs along a normal are nested, so bisection finds `R`), if `R` lies within
+    /// `radii`. `rounding` is the slack of the "holds no point" test.
+    pub(super) fn ridge_point(
+        &self,
+        t: f64,
+        side: f64,
+        radii: (f64, f64),
+        rounding: f64,
+    ) -> Option<Point> {
+        let d = self.derivative(t);
+        let speed = d.norm();
+        if !(speed > 0.0 && speed.is_finite()) {
+            return None;
+        }
+        let (foot, n) = (self.at(t), d.perp() * (side / speed));
+        let empty = |r: f64| {
+            let x = foot + n * r;
+            x.dist(self.foot(x)) >= r - rounding
+        };
+        let (mut lo, mut hi) = (radii.0.max(0.0), radii.1);
+        if !empty(lo) || empty(hi) {
+            return None;
+        }
+        for _ in 0..12 {
+            let mid = 0.5 * (lo + hi);
+            if empty(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Some(foot + n * (0.5 * (lo + hi)))
+    }
+
+    /// The left normal's side (±1) of `q` at parameter `t`.
+    pub(super) fn side_of(&self, q: Point, t: f64) -> f64 {
+        if (q - self.at(t)).dot(self.derivative(t).perp()) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+
+    /// The speed `|C'(t)|`.
+    pub(super) fn speed(&self, t: f64) -> f64 {
+        self.derivative(t).norm()
+    }
+
+    /// The parameter range `(t0, t1)`.
+    pub(super) fn range(&self) -> (f64, f64) {
+        (self.t0, self.t1)
+    }
+
+    /// The centre of curvature at parameter `t`, `C + N / κ` with
+    /// `κ = (C' × C'') / |C'|³` and `N` the left normal (`C''` by central differences
+    /// of `C'`); `None` where the piece is straight or singular there.
+    pub(super) fn curvature_center(&self, t: f64) -> Option<Point> {
+        let h = 1e-6 * (self.t1 - self.t0);
+        let (a, b) = ((t - h).max(self.t0), (t + h).min(self.t1));
+        let d = self.derivative(t);
+        let second = (self.derivative(b) - self.derivative(a)) * (1.0 / (b - a));
+        let speed = d.norm();
+        let kappa = d.cross(second) / speed.powi(3);
+        let center = self.at(t) + d.perp() * (1.0 / (speed * kappa));
+        (kappa != 0.0 && center.x.is_finite() && center.y.is_finite()).then_some(center)
     }
 
     /// Newton on `φ(t) = (C(t) − q) · C'(t) = 0` from sample `(p, t)`, with
     /// `φ' = |C'|² + (C − q) · C''` (`C''` by central differences of `C'`; `|C'|²` alone,
-    /// the Gauss–Newton step, where that is not positive): the nearest point met and its
-    /// distance.
-    fn descend(&self, q: Point, mut p: Point, mut t: f64) -> (f64, Point) {
-        let mut best = (q.dist(p), p);
+    /// the Gauss–Newton step, where that is not positive): the nearest point met, as
+    /// `(distance, point, parameter)`.
+    fn descend(&self, q: Point, mut p: Point, mut t: f64) -> (f64, Point, f64) {
+        let mut best = (q.dist(p), p, t);
         let h = 1e-6 * (self.t1 - self.t0);
         for _ in 0..32 {
             let d = self.derivative(t);
@@ -167,7 +267,7 @@ impl Parametric {
             t = next;
             p = self.at(t);
             if q.dist(p) < best.0 {
-                best = (q.dist(p), p);
+                best = (q.dist(p), p, t);
             }
             if moved <= 1e-10 * (self.t1 - self.t0) {
                 break;

@@ -1,6 +1,7 @@
 //! Check a (soundness): edge samples moved onto their generators' bisector, the
 //! distance moved and any nearer site's excess within tolerance.
 
+use super::field::{ridge_error, Branch, Field};
 use super::report::{fmt_g3, MAX_LIST};
 use super::Checker;
 use crate::geom::Point;
@@ -11,13 +12,18 @@ impl Checker<'_> {
     /// The error of edge sample `q0` of the bisector of `a` and `b`, and why.
     pub(super) fn sample_error(&self, q0: Point, a: usize, b: usize) -> (f64, &'static str) {
         let (e_tie, q, dmin, gmin) = if a == b {
-            // two branches of one curve (an arc piece): an arc has a single branch
-            // wherever its distance is differentiable, so the edge can only be its
-            // centre, where a ridge ends
-            let (va, ga) = self.eval(a, q0);
-            let e = self.fields[a]
-                .curvature_center()
-                .map_or(f64::INFINITY, |c| c.dist(q0));
+            // two branches of one curved feature: its ridge, which ends at a centre of
+            // curvature (an arc has a single branch, so only its centre qualifies)
+            let branches = self.fields[a].branches(q0, 2.0 * self.tol);
+            let mut e = ridge_error(q0, &branches, 2);
+            if e > self.tol {
+                if let Some(nearest) = branches.first() {
+                    e = e.min(self.ridge_nearby(a, q0, nearest));
+                }
+            }
+            let (va, ga) = branches
+                .first()
+                .map_or_else(|| self.eval(a, q0), |b| (b.value, b.gradient(q0)));
             (e, q0, va, ga)
         } else {
             self.project(q0, a, b)
@@ -71,6 +77,34 @@ impl Checker<'_> {
             }
         }
         (e, why)
+    }
+
+    /// How far `q` is from the ridge of free-form feature `a` (where two branches of
+    /// its distance tie), searched over the ridge points `C(t) + R(t)·n(t)` whose feet
+    /// lie within `8·tol` along the curve of `q`'s nearest foot `C(t_f)` (steps of
+    /// `tol / 2`), `R(t)` the radius of the largest empty disc touching there (see
+    /// [`Parametric::ridge_point`]). Where the ridge's two branches merge (towards
+    /// its end at a centre of curvature), points just off it see a single branch,
+    /// whose tie the first-order estimate cannot measure; and near the end the normal
+    /// through `q`'s own foot meets the ridge at a grazing angle.
+    ///
+    /// [`Parametric::ridge_point`]: super::parametric::Parametric::ridge_point
+    fn ridge_nearby(&self, a: usize, q: Point, nearest: &Branch) -> f64 {
+        let (Field::Pieces(pieces), Some((k, t_f))) = (&self.fields[a], nearest.param) else {
+            return f64::INFINITY;
+        };
+        let piece = &pieces[k];
+        let (t0, t1) = piece.range();
+        let step = 0.5 * self.tol / piece.speed(t_f).max(1e-300);
+        let side = piece.side_of(q, t_f);
+        let d = nearest.value;
+        let radii = (d - 4.0 * self.tol, d + 4.0 * self.tol);
+        let rounding = 1e-12 * self.scale;
+        (-16..=16)
+            .map(|j| t_f + j as f64 * step)
+            .filter(|t| (t0..=t1).contains(t))
+            .filter_map(|t| piece.ridge_point(t, side, radii, rounding))
+            .fold(f64::INFINITY, |best, m| best.min(m.dist(q)))
     }
 
     /// The spacing of check a's samples: ε/2, or the coarser spacing that keeps them

@@ -20,12 +20,15 @@ impl Checker<'_> {
             match gens {
                 Ok(mut g) => {
                     g.sort_unstable();
-                    let mut twice: Vec<usize> = g
-                        .windows(2)
-                        .filter(|w| w[0] == w[1] && self.gens.curved[w[0]] && self.gens.featured)
-                        .map(|w| w[0])
-                        .collect();
-                    twice.dedup();
+                    let mut twice: Vec<(usize, usize)> = Vec::new();
+                    for w in g.windows(2) {
+                        if w[0] == w[1] && self.gens.curved[w[0]] && self.gens.featured {
+                            match twice.last_mut() {
+                                Some(last) if last.0 == w[0] => last.1 += 1,
+                                _ => twice.push((w[0], 2)),
+                            }
+                        }
+                    }
                     g.dedup();
                     self.vgens.push(Some(g));
                     self.vtwice.push(twice);

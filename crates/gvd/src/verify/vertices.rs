@@ -1,6 +1,7 @@
 //! Check b (vertices): each vertex near a point where its generators tie, found by
 //! Gauss–Newton, and no other site nearer.
 
+use super::field::ridge_error;
 use super::report::{fmt_g3, MAX_LIST};
 use super::{finite, Checker};
 use crate::geom::Point;
@@ -33,9 +34,14 @@ impl Checker<'_> {
         (if finite(step) { step } else { Point::default() }, ev)
     }
 
-    /// The error of vertex `v` with generators `gens`, of which the curved `twice` are
-    /// listed twice, and why.
-    pub(super) fn vertex_error(&self, v: Point, gens: &[usize], twice: &[usize]) -> (f64, String) {
+    /// The error of vertex `v` with generators `gens`, of which the curved features
+    /// `twice` are listed more than once (as `(generator, times)`), and why.
+    pub(super) fn vertex_error(
+        &self,
+        v: Point,
+        gens: &[usize],
+        twice: &[(usize, usize)],
+    ) -> (f64, String) {
         let cap = 4.0 * self.scene.epsilon();
         let mut pos = v;
         for _ in 0..6 {
@@ -63,13 +69,11 @@ impl Checker<'_> {
             0.0
         };
         let mut e_tie = pos.dist(v) + spread / (2.0 * gmax).max(1e-12);
-        // a curve listed twice with a single branch (an arc): the vertex ends a ridge,
-        // so it must be the centre of curvature
-        for &g in twice {
-            let ec = self.fields[g]
-                .curvature_center()
-                .map_or(f64::INFINITY, |c| c.dist(v));
-            e_tie = e_tie.max(ec);
+        // a curved feature listed m times: m of its branches tie there (where only
+        // one is left, the vertex ends the feature's ridge at a centre of curvature)
+        for &(g, m) in twice {
+            let branches = self.fields[g].branches(v, 2.0 * self.tol);
+            e_tie = e_tie.max(ridge_error(v, &branches, m));
         }
         let (e_other, who) = self.intrusion(pos, vmin, gmin, gens);
         let e = e_tie.hypot(e_other);

@@ -112,7 +112,8 @@ pub(crate) fn run_scene(
     let mut rounds = 0;
     let outputs = loop {
         watch.check()?;
-        let segs = segments::build(&refine::as_leaves(&leaves), &lattice);
+        let boxes: Vec<_> = leaves.iter().map(|n| n.ib).collect();
+        let segs = segments::build(&boxes, &lattice);
         let nodes = construct::via_nodes(&poly, &leaves, &segs, &tol);
         let last = rounds >= MAX_ROUNDS || budget.exhausted();
         let mut marked = vec![false; leaves.len()];

@@ -100,26 +100,37 @@ impl Ctx<'_> {
         leaves
     }
 
-    /// Replaces the marked leaves by their quarters (taking one box each); returns how
-    /// many were split.
-    pub fn split_marked(&self, leaves: &mut Vec<Node>, marked: &[bool]) -> usize {
+    /// Replaces the marked leaves by their quarters (taking one box each), with `kept`
+    /// alongside (`None` for the quarters); returns how many were split.
+    pub fn split_marked<T>(
+        &self,
+        leaves: &mut Vec<Node>,
+        kept: &mut Vec<Option<T>>,
+        marked: &[bool],
+    ) -> usize {
         let mut out = Vec::with_capacity(leaves.len());
+        let mut out_kept = Vec::with_capacity(leaves.len());
         let mut count = 0;
-        for (n, &m) in leaves.drain(..).zip(marked) {
-            let kids = if m && self.budget.take_box() {
+        for ((n, k), &m) in leaves.drain(..).zip(kept.drain(..)).zip(marked) {
+            let quarters = if m && self.budget.take_box() {
                 self.split(&n)
             } else {
                 None
             };
-            match kids {
-                Some(k) => {
+            match quarters {
+                Some(q) => {
                     count += 1;
-                    out.extend(k);
+                    out.extend(q);
+                    out_kept.extend([None, None, None, None]);
                 }
-                None => out.push(n),
+                None => {
+                    out.push(n);
+                    out_kept.push(k);
+                }
             }
         }
         *leaves = out;
+        *kept = out_kept;
         count
     }
 

@@ -131,7 +131,11 @@ pub(crate) fn run_scene(
             let can_split = !last && ctx.can_split(n);
             match resolver.resolve(n, &ports, can_split) {
                 Ok(output) => {
-                    let members = segs.members[segs.rows[l]..segs.rows[l + 1]].to_vec();
+                    let members = if output.pieces.is_empty() {
+                        Vec::new()
+                    } else {
+                        segs.members[segs.rows[l]..segs.rows[l + 1]].to_vec()
+                    };
                     kept[l] = Some(Resolved { output, members });
                 }
                 Err(_) => marked[l] = true,

@@ -3,6 +3,7 @@
 mod bench;
 mod bench_algebraic;
 mod bench_implicit;
+mod bench_soft;
 mod formats;
 mod output;
 mod progress;
@@ -176,7 +177,7 @@ struct VerifyArgs {
 
 #[derive(Args)]
 struct BenchArgs {
-    /// Which table: `emiris-table1`, `implicit` or `shou`.
+    /// Which table: `emiris-table1`, `implicit`, `shou` or `soft`.
     table: String,
     /// Larger runs: 10^4 and 10^5 Euclidean sites and the multi-core speed-up
     /// (`emiris-table1`, `implicit`), no box cap per run (`shou`).
@@ -440,8 +441,9 @@ fn bench(args: BenchArgs) -> Result<ExitCode> {
         "emiris-table1" => bench::emiris_table1(args.large, repeat),
         "implicit" => bench_implicit::implicit(args.large, repeat),
         "shou" => bench_algebraic::shou(args.large, repeat),
+        "soft" => bench_soft::soft_table(repeat),
         other => bail!(
-            "unknown table '{}' (known: emiris-table1, implicit, shou)",
+            "unknown table '{}' (known: emiris-table1, implicit, shou, soft)",
             clip(other)
         ),
     }

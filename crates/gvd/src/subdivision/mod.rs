@@ -280,7 +280,8 @@ pub(crate) fn run_watched<F: DistanceField>(
     budget.check(eps)?;
     let t_subdivide = start.elapsed().as_secs_f64();
 
-    let segs = segments::build(&leaves, &lattice);
+    let boxes: Vec<tree::IBox> = leaves.iter().map(|l| l.ib).collect();
+    let segs = segments::build(&boxes, &lattice);
     let scan_len = 0.125 * eps;
     let scan_one = |s: &segments::Segment| {
         let cands = match s.leaves {

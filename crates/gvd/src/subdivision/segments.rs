@@ -4,7 +4,7 @@
 //! A segment is computed once and shared by the two leaves it separates, so both see the
 //! same transitions: the global diagram is stitched through them.
 
-use super::tree::{Lattice, Leaf};
+use super::tree::{IBox, Lattice};
 use crate::geom::{Aabb, Point};
 use crate::site::DistanceField;
 
@@ -40,30 +40,35 @@ pub struct Segments {
     pub members: Vec<u32>,
 }
 
-pub fn build(leaves: &[Leaf], lattice: &Lattice) -> Segments {
+/// The segments of the leaves with boxes `boxes` (which tile the lattice's root box).
+pub fn build(boxes: &[IBox], lattice: &Lattice) -> Segments {
     let mut segments = Vec::new();
     for axis in 0..2 {
         // sides perpendicular to `axis` lie on lines `coord[axis] = const`
         let other = 1 - axis;
-        let mut sides: Vec<Side> = Vec::with_capacity(2 * leaves.len());
-        for (k, l) in leaves.iter().enumerate() {
-            let (lo, hi) = (l.ib.lo[other], l.ib.hi[other]);
+        let mut sides: Vec<Side> = Vec::with_capacity(2 * boxes.len());
+        for (k, ib) in boxes.iter().enumerate() {
+            let (lo, hi) = (ib.lo[other], ib.hi[other]);
             sides.push(Side {
-                line: l.ib.lo[axis],
+                line: ib.lo[axis],
                 after: true,
                 lo,
                 hi,
                 leaf: k as u32,
             });
             sides.push(Side {
-                line: l.ib.hi[axis],
+                line: ib.hi[axis],
                 after: false,
                 lo,
                 hi,
                 leaf: k as u32,
             });
         }
-        sides.sort_unstable_by_key(|s| (s.line, s.after, s.lo));
+        // by (line, after, lo), packed (lattice coordinates are below 2^63); the keys
+        // are distinct, as leaves do not overlap
+        sides.sort_unstable_by_key(|s| {
+            (u128::from(s.line) << 64) | (u128::from(s.after) << 63) | u128::from(s.lo)
+        });
         let mut start = 0;
         while start < sides.len() {
             let line = sides[start].line;
@@ -80,7 +85,7 @@ pub fn build(leaves: &[Leaf], lattice: &Lattice) -> Segments {
             start = end;
         }
     }
-    let mut counts = vec![0usize; leaves.len() + 1];
+    let mut counts = vec![0usize; boxes.len() + 1];
     for s in &segments {
         for l in s.leaves.iter().flatten() {
             counts[*l as usize + 1] += 1;
@@ -90,7 +95,7 @@ pub fn build(leaves: &[Leaf], lattice: &Lattice) -> Segments {
         counts[k] += counts[k - 1];
     }
     let mut fill = counts.clone();
-    let mut members = vec![0u32; counts[leaves.len()]];
+    let mut members = vec![0u32; counts[boxes.len()]];
     for (i, s) in segments.iter().enumerate() {
         for l in s.leaves.iter().flatten() {
             members[fill[*l as usize]] = i as u32;

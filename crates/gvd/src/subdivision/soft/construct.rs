@@ -69,17 +69,22 @@ fn intersect(a: &[u32], b: &[u32]) -> Vec<u32> {
         .collect()
 }
 
-/// The via nodes of every segment: for each pair of the features both leaves keep
-/// (conservative on the shared segment), the valid crossings of their bisector.
+/// The via nodes of every segment on the boundary of a leaf marked in `todo` (none on
+/// the others): for each pair of the features both leaves keep (conservative on the
+/// shared segment), the valid crossings of their bisector.
 pub fn via_nodes(
     poly: &Polygonal,
     leaves: &[Node],
     segs: &Segments,
+    todo: &[bool],
     tol: &Tol,
 ) -> Vec<Vec<(Point, [u32; 2])>> {
     segs.segments
         .iter()
         .map(|s| {
+            if !s.leaves.iter().flatten().any(|&l| todo[l as usize]) {
+                return Vec::new();
+            }
             let cands = match s.leaves {
                 [Some(a), Some(b)] => {
                     intersect(&leaves[a as usize].bs.set, &leaves[b as usize].bs.set)
@@ -102,6 +107,31 @@ pub fn via_nodes(
             out.into_iter().map(|(_, q, p)| (q, p)).collect()
         })
         .collect()
+}
+
+/// A leaf's output with the segments of its boundary in the round that resolved it
+/// (none kept for an output without pieces).
+#[derive(Clone)]
+pub struct Resolved {
+    pub output: LeafOutput,
+    pub members: Vec<u32>,
+}
+
+impl Resolved {
+    /// The output with its ports on the same segments numbered as `members` (the
+    /// leaf's segments in a later round, in the same order along its boundary).
+    pub fn renumbered(mut self, members: &[u32]) -> LeafOutput {
+        debug_assert!(self.output.pieces.is_empty() || self.members.len() == members.len());
+        for piece in &mut self.output.pieces {
+            for end in &mut piece.ends {
+                if let End::Port(PortId::Segment { segment, .. }) = end {
+                    let k = self.members.iter().position(|s| s == segment);
+                    *segment = members[k.expect("ports lie on the leaf's segments")];
+                }
+            }
+        }
+        self.output
+    }
 }
 
 /// Why a box could not be resolved.

@@ -24,7 +24,7 @@ use crate::error::Error;
 use crate::geom::{Aabb, Point};
 use crate::scene::{Mode, Scene};
 use crate::site::polygonal::Polygonal;
-use construct::{Resolver, Tol};
+use construct::{Resolved, Resolver, Tol};
 use refine::{Ctx, Node};
 use serde_json::json;
 use std::time::Instant;
@@ -110,26 +110,60 @@ pub(crate) fn run_scene(
     };
     let mut local_splits = 0;
     let mut rounds = 0;
+    // Each round resolves only the leaves without an output: the quarters of the
+    // leaves split in the round before and their neighbours (whose sides those splits
+    // cut). Every other leaf has the same sides, neighbours and nodes as when it was
+    // resolved, hence the same output, up to the numbering of the segments.
+    let mut kept: Vec<Option<Resolved>> = vec![None; leaves.len()];
     let outputs = loop {
         watch.check()?;
-        let segs = segments::build(&refine::as_leaves(&leaves), &lattice);
-        let nodes = construct::via_nodes(&poly, &leaves, &segs, &tol);
+        let boxes: Vec<_> = leaves.iter().map(|n| n.ib).collect();
+        let segs = segments::build(&boxes, &lattice);
+        let todo: Vec<bool> = kept.iter().map(Option::is_none).collect();
+        let nodes = construct::via_nodes(&poly, &leaves, &segs, &todo, &tol);
         let last = rounds >= MAX_ROUNDS || budget.exhausted();
         let mut marked = vec![false; leaves.len()];
-        let mut outputs = Vec::with_capacity(leaves.len());
         for (l, n) in leaves.iter().enumerate() {
+            if !todo[l] {
+                continue;
+            }
             let ports = construct::ports_of(l, &segs, &nodes);
             let can_split = !last && ctx.can_split(n);
             match resolver.resolve(n, &ports, can_split) {
-                Ok(o) => outputs.push(o),
+                Ok(output) => {
+                    let members = if output.pieces.is_empty() {
+                        Vec::new()
+                    } else {
+                        segs.members[segs.rows[l]..segs.rows[l + 1]].to_vec()
+                    };
+                    kept[l] = Some(Resolved { output, members });
+                }
                 Err(_) => marked[l] = true,
             }
         }
         if !marked.iter().any(|&m| m) {
-            break outputs;
+            break kept
+                .into_iter()
+                .enumerate()
+                .map(|(l, r)| {
+                    let r = r.expect("every leaf is resolved");
+                    r.renumbered(&segs.members[segs.rows[l]..segs.rows[l + 1]])
+                })
+                .collect::<Vec<_>>();
+        }
+        for s in &segs.segments {
+            if let [Some(a), Some(b)] = s.leaves {
+                let (a, b) = (a as usize, b as usize);
+                if marked[a] {
+                    kept[b] = None;
+                }
+                if marked[b] {
+                    kept[a] = None;
+                }
+            }
         }
         // not balanced again: the construction takes sides of any number of segments
-        local_splits += ctx.split_marked(&mut leaves, &marked);
+        local_splits += ctx.split_marked(&mut leaves, &mut kept, &marked);
         rounds += 1;
     };
     budget.check(eps)?;

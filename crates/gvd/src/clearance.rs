@@ -1,77 +1,121 @@
-//! The clearance of a diagram's vertices: the distance from each to its generators
-//! (equidistant, so the first one suffices).
+//! The clearance of a diagram's points (the distance to their generators: the radius
+//! of the maximal empty disc centred there) and the feet (the generators' nearest
+//! points), which the medial axis's pruning ([`crate::complex::prune`]) measures.
 
 use crate::complex::{FeatureKind, Generator, VoronoiComplex};
 use crate::geom::arc::Arc;
-use crate::geom::{segment_distance, Point};
-use crate::scene::{Metric, Scene, SiteKind};
+use crate::geom::{segment_foot, Point};
+use crate::scene::{Metric, Scene, Site, SiteKind};
 use crate::site::{DistanceField, SiteField};
 
 impl VoronoiComplex {
-    /// Every vertex's clearance in `scene`: the distance to its first generator,
-    /// Euclidean for points, circles (`|q − c| − r`), segments, arcs, polylines and
-    /// polygons (and their corners and edges), the field's value for the other kinds,
-    /// NaN for Bézier and B-spline curves.
+    /// Every vertex's clearance in `scene`: its stored [`crate::complex::Vertex::clearance`]
+    /// where set, else the least distance to its generators:
+    /// Euclidean for the geometric kinds, the field's value for the other kinds, NaN
+    /// for Bézier and B-spline curves.
     pub fn clearances(&self, scene: &Scene) -> Vec<f64> {
         self.vertices
             .iter()
             .map(|v| {
-                v.sites
-                    .first()
-                    .map_or(f64::NAN, |g| clearance(scene, g, v.at))
+                v.clearance
+                    .unwrap_or_else(|| generators_clearance(scene, &v.sites, v.at))
             })
             .collect()
     }
+
+    /// Stores the clearance of every vertex ([`crate::complex::Vertex::clearance`]) and
+    /// of every point of every edge ([`crate::complex::Edge::clearance`]): the least
+    /// distance to the generators (which agree within epsilon). Left unset where
+    /// unknown (Bézier and B-spline curves): a vertex's is `None`, an edge with any
+    /// unknown point gets none.
+    pub fn add_clearances(&mut self, scene: &Scene) {
+        for v in &mut self.vertices {
+            let r = generators_clearance(scene, &v.sites, v.at);
+            v.clearance = r.is_finite().then_some(r);
+        }
+        for e in &mut self.edges {
+            let radii: Vec<f64> = e
+                .points
+                .iter()
+                .map(|&q| generators_clearance(scene, &e.sites, q))
+                .collect();
+            e.clearance = if radii.iter().all(|r| r.is_finite()) {
+                radii
+            } else {
+                Vec::new()
+            };
+        }
+    }
+}
+
+/// The least of the distances from `q` to `generators` ([`clearance`]); NaN if any is
+/// unknown or there are none.
+pub(crate) fn generators_clearance(scene: &Scene, generators: &[Generator], q: Point) -> f64 {
+    let mut least = f64::NAN;
+    for g in generators {
+        let r = clearance(scene, g, q);
+        if r.is_nan() {
+            return f64::NAN;
+        }
+        least = if least.is_nan() { r } else { least.min(r) };
+    }
+    least
 }
 
 /// The distance from `q` to `generator` of `scene`: Euclidean for the geometric kinds
 /// (points, circles as `|q − c| − r`, segments, arcs, polylines, polygons' boundaries,
-/// their corners and edges), the site's field value for the others (point metrics,
-/// ellipses, algebraic curves, fields); NaN where neither is known here (Bézier and
-/// B-spline curves).
+/// their corners and edges: `|q − foot|`, see [`foot`]), the site's field value for the
+/// others (point metrics, ellipses, algebraic curves, fields); NaN where neither is
+/// known here (Bézier and B-spline curves).
 pub(crate) fn clearance(scene: &Scene, generator: &Generator, q: Point) -> f64 {
     let Some(site) = scene.sites().get(generator.site()) else {
         return f64::NAN;
     };
-    let chain = |points: &[Point], closed: bool| -> Vec<(Point, Point)> {
-        let n = points.len();
-        let edges = if closed { n } else { n.saturating_sub(1) };
-        (0..edges)
-            .map(|k| (points[k], points[(k + 1) % n]))
-            .collect()
-    };
-    let edges: Vec<(Point, Point)> = match &site.kind {
-        SiteKind::Polyline { points } => chain(points, false),
-        SiteKind::Polygon { rings } => rings.iter().flat_map(|r| chain(r, true)).collect(),
-        _ => Vec::new(),
-    };
+    if let SiteKind::Circle { center, radius } = site.kind {
+        return q.dist(center) - radius;
+    }
+    if let Some(f) = foot(scene, generator, q) {
+        return q.dist(f);
+    }
+    match &site.kind {
+        SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => f64::NAN,
+        kind => SiteField::from_site(generator.site(), kind, &scene.domain())
+            .map(|f| f.value(q))
+            .unwrap_or(f64::NAN),
+    }
+}
+
+/// The point of `generator` nearest to `q` (its foot): a Euclidean point or a corner is
+/// its own foot; a segment or polygon edge gives the orthogonal projection clamped to
+/// it; an arc the radial projection `c + r·(q − c)/|q − c|` where the arc spans that
+/// direction, else its nearer end; a circle the radial projection; a whole polyline or
+/// polygon the nearest of its edges' feet. `None` for the other kinds (point metrics,
+/// ellipses, algebraic and free-form curves, fields), for a circle's or arc's centre,
+/// and for an index out of range.
+pub(crate) fn foot(scene: &Scene, generator: &Generator, q: Point) -> Option<Point> {
+    let site = scene.sites().get(generator.site())?;
     if let Generator::Feature { feature, index, .. } = *generator {
-        let corners: Vec<Point> = edges.iter().map(|e| e.0).collect();
-        let corners = match &site.kind {
-            SiteKind::Polyline { points } => points.clone(),
-            _ => corners,
-        };
         match feature {
-            FeatureKind::Corner => {
-                if let Some(c) = corners.get(index) {
-                    return q.dist(*c);
-                }
-            }
+            FeatureKind::Corner => return corners(site)?.get(index).copied(),
             FeatureKind::Edge => {
-                if let Some((a, b)) = edges.get(index) {
-                    return segment_distance(q, *a, *b);
-                }
+                let (a, b) = chain_edges(site)?.nth(index)?;
+                return Some(segment_foot(q, a, b));
             }
             FeatureKind::Piece => {}
         }
     }
+    let radial = |center: Point, radius: f64| {
+        let d = q - center;
+        let n = d.norm();
+        (n > 0.0).then(|| center + d * (radius / n))
+    };
     match &site.kind {
         SiteKind::Point {
             at,
             metric: Metric::Euclidean,
-        } => q.dist(*at),
-        SiteKind::Circle { center, radius } => q.dist(*center) - radius,
-        SiteKind::Segment { from, to } => segment_distance(q, *from, *to),
+        } => Some(*at),
+        SiteKind::Circle { center, radius } => radial(*center, *radius),
+        SiteKind::Segment { from, to } => Some(segment_foot(q, *from, *to)),
         SiteKind::Arc {
             center,
             radius,
@@ -81,18 +125,45 @@ pub(crate) fn clearance(scene: &Scene, generator: &Generator, q: Point) -> f64 {
             let arc = Arc::from_angles(*center, *radius, *start_angle, *end_angle);
             let d = q - *center;
             if arc.spans(d.y.atan2(d.x)) {
-                (d.norm() - radius).abs()
+                radial(*center, *radius)
             } else {
                 let [a, b] = arc.ends();
-                q.dist(a).min(q.dist(b))
+                Some(if q.dist(a) <= q.dist(b) { a } else { b })
             }
         }
-        SiteKind::Polyline { .. } | SiteKind::Polygon { .. } => edges
-            .iter()
-            .map(|(a, b)| segment_distance(q, *a, *b))
-            .fold(f64::INFINITY, f64::min),
-        kind => SiteField::from_site(generator.site(), kind, &scene.domain())
-            .map(|f| f.value(q))
-            .unwrap_or(f64::NAN),
+        SiteKind::Polyline { .. } | SiteKind::Polygon { .. } => chain_edges(site)?
+            .map(|(a, b)| segment_foot(q, a, b))
+            .min_by(|f, g| q.dist2(*f).total_cmp(&q.dist2(*g))),
+        _ => None,
+    }
+}
+
+/// The edges of a polyline, or of a polygon's rings in order (numbered as the
+/// features are); `None` for other kinds.
+fn chain_edges(site: &Site) -> Option<impl Iterator<Item = (Point, Point)> + '_> {
+    fn chain(points: &[Point], closed: bool) -> impl Iterator<Item = (Point, Point)> + '_ {
+        let n = points.len();
+        let edges = if closed { n } else { n.saturating_sub(1) };
+        (0..edges).map(move |k| (points[k], points[(k + 1) % n]))
+    }
+    let rings: Vec<(&[Point], bool)> = match &site.kind {
+        SiteKind::Polyline { points } => vec![(points.as_slice(), false)],
+        SiteKind::Polygon { rings } => rings.iter().map(|r| (r.as_slice(), true)).collect(),
+        _ => return None,
+    };
+    Some(
+        rings
+            .into_iter()
+            .flat_map(move |(r, closed)| chain(r, closed)),
+    )
+}
+
+/// The corners of a polyline (its points) or of a polygon (its rings' points in
+/// order); `None` for other kinds.
+fn corners(site: &Site) -> Option<Vec<Point>> {
+    match &site.kind {
+        SiteKind::Polyline { points } => Some(points.clone()),
+        SiteKind::Polygon { rings } => Some(rings.iter().flatten().copied().collect()),
+        _ => None,
     }
 }

@@ -105,9 +105,14 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 
 /// [`compute`], also returning the subdivision's leaves (none for the incremental engine).
 /// The diagram carries the sites' user ids ([`VoronoiComplex::site_ids`]) when any site
-/// has one.
+/// has one, and in `complex` and `medial_axis` modes the clearance of its vertices and
+/// edge points ([`VoronoiComplex::add_clearances`]; not in `voronoi` mode, whose
+/// diagrams of millions of points would grow by a number per point for little use).
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     let mut out = run_engine(scene, options)?;
+    if scene.mode() != Mode::Voronoi {
+        out.complex.add_clearances(scene);
+    }
     if scene.sites().iter().any(|s| s.id.is_some()) {
         out.complex.site_ids = scene.sites().iter().map(|s| s.id.clone()).collect();
     }

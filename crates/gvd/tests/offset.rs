@@ -294,6 +294,7 @@ fn edge(site: usize, index: usize) -> Generator {
 
 fn diagram_edge(sites: [Generator; 2], points: Vec<Point>) -> Edge {
     Edge {
+        clearance: Vec::new(),
         sites,
         from: None,
         bisector: Vec::new(),
@@ -385,6 +386,7 @@ fn a_square_pocket_gives_a_smaller_square() {
         .collect();
     let diagram = VoronoiComplex {
         vertices: vec![Vertex {
+            clearance: None,
             at: p(0.0, 0.0),
             sites: (0..4).map(|k| edge(0, k)).collect(),
         }],

@@ -236,16 +236,19 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
     let d = VoronoiComplex {
         vertices: vec![
             Vertex {
+                clearance: None,
                 at: v0,
                 sites: smallvec![edge_gen(0, 0), edge_gen(0, 2), edge_gen(0, 3)],
             },
             Vertex {
+                clearance: None,
                 at: v1,
                 sites: smallvec![edge_gen(0, 0), edge_gen(0, 1), edge_gen(0, 2)],
             },
         ],
         edges: vec![
             Edge {
+                clearance: Vec::new(),
                 sites: [edge_gen(0, 0), edge_gen(0, 2)],
                 from: Some(0),
                 bisector: Vec::new(),
@@ -253,6 +256,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
                 points: smallvec![v0, v1],
             },
             Edge {
+                clearance: Vec::new(),
                 sites: [edge_gen(0, 0), edge_gen(0, 3)],
                 from: None,
                 bisector: Vec::new(),
@@ -260,6 +264,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
                 points: smallvec![p(-1.0, -0.5), v0],
             },
             Edge {
+                clearance: Vec::new(),
                 sites: [edge_gen(0, 2), edge_gen(0, 3)],
                 from: None,
                 bisector: Vec::new(),
@@ -267,6 +272,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
                 points: smallvec![p(-1.0, 0.5), v0],
             },
             Edge {
+                clearance: Vec::new(),
                 sites: [edge_gen(0, 0), edge_gen(0, 1)],
                 from: None,
                 bisector: Vec::new(),
@@ -274,6 +280,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
                 points: smallvec![p(1.0, -0.5), v1],
             },
             Edge {
+                clearance: Vec::new(),
                 sites: [edge_gen(0, 1), edge_gen(0, 2)],
                 from: None,
                 bisector: Vec::new(),
@@ -315,6 +322,7 @@ fn medial_axis_outside_the_region_and_zone_boundaries_fail() {
     let s = s.with_mode(Mode::Complex);
     let d = VoronoiComplex {
         edges: vec![Edge {
+            clearance: Vec::new(),
             sites: [corner(0, 1), edge_gen(0, 0)],
             from: None,
             bisector: Vec::new(),

@@ -589,6 +589,7 @@ mod tests {
     /// A straight edge with `n` points.
     fn edge(sites: [usize; 2], ends: [Option<usize>; 2], a: Point, b: Point, n: usize) -> Edge {
         Edge {
+            clearance: Vec::new(),
             sites: sites.map(Generator::Site),
             from: ends[0],
             bisector: Vec::new(),
@@ -601,6 +602,7 @@ mod tests {
 
     fn vertex(at: Point, sites: &[usize]) -> Vertex {
         Vertex {
+            clearance: None,
             at,
             sites: sites.iter().map(|&s| Generator::Site(s)).collect(),
         }
@@ -792,6 +794,7 @@ mod tests {
         let edges = loops
             .into_iter()
             .map(|(s, points)| Edge {
+                clearance: Vec::new(),
                 sites: s.map(Generator::Site),
                 from: None,
                 bisector: Vec::new(),

@@ -58,6 +58,10 @@ pub struct Vertex {
     pub at: Point,
     /// Usually three, stored inline.
     pub sites: SmallVec<[Generator; 3]>,
+    /// The distance to the generators (the radius of the maximal empty disc centred
+    /// here), when known and asked for ([`VoronoiComplex::add_clearances`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clearance: Option<f64>,
 }
 
 /// A Voronoi edge: a polyline within epsilon of the bisector of its two generators,
@@ -76,6 +80,10 @@ pub struct Edge {
     /// asked for, or when a piece has constant clearance; see [`BisectorPiece`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub bisector: Vec<BisectorPiece>,
+    /// The distance to the two generators at each of `points` (parallel to it), when
+    /// known and asked for ([`VoronoiComplex::add_clearances`]); empty otherwise.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub clearance: Vec<f64>,
 }
 
 /// One piece of an edge's bisector in Held's offset-parameter form (Hel01): with `t` the clearance (the distance to both
@@ -148,9 +156,11 @@ impl VoronoiComplex {
     pub fn scale(&mut self, s: f64) {
         for v in &mut self.vertices {
             v.at = v.at * s;
+            v.clearance = v.clearance.map(|r| r * s);
         }
         for e in &mut self.edges {
             e.points.iter_mut().for_each(|q| *q = *q * s);
+            e.clearance.iter_mut().for_each(|r| *r *= s);
             for piece in &mut e.bisector {
                 for coeffs in [&mut piece.x, &mut piece.y] {
                     for k in [0, 1, 4, 6] {
@@ -177,6 +187,13 @@ impl VoronoiComplex {
                 return Err(format!(
                     "edge {k} separates site {} from itself",
                     e.sites[0].site()
+                ));
+            }
+            if !e.clearance.is_empty() && e.clearance.len() != e.points.len() {
+                return Err(format!(
+                    "edge {k} has {} clearances for {} points",
+                    e.clearance.len(),
+                    e.points.len()
                 ));
             }
             for end in [e.from, e.to].into_iter().flatten() {

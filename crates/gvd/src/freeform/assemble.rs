@@ -88,6 +88,7 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usi
                 * (1.0 / members.len() as f64);
             vertex_of[c] = Some(complex.vertices.len());
             complex.vertices.push(Vertex {
+                clearance: None,
                 at,
                 sites: SmallVec::from_vec(g),
             });
@@ -166,6 +167,7 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usi
             continue;
         }
         complex.edges.push(Edge {
+            clearance: Vec::new(),
             sites: g,
             from,
             to,

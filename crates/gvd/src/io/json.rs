@@ -236,10 +236,12 @@ mod tests {
     fn round_trip_and_errors() {
         let d = VoronoiComplex {
             vertices: vec![Vertex {
+                clearance: None,
                 at: Point::new(0.1, -0.2),
                 sites: smallvec![Generator::Site(0), Generator::Site(3), Generator::Site(7)],
             }],
             edges: vec![Edge {
+                clearance: Vec::new(),
                 sites: [Generator::Site(0), Generator::Site(3)],
                 from: Some(0),
                 bisector: Vec::new(),
@@ -278,11 +280,13 @@ mod tests {
         for i in 0..300_000 {
             let p = Point::new(i as f64 / 7.0, -1.0 / (i as f64 + 1.0));
             d.vertices.push(Vertex {
+                clearance: None,
                 at: p,
                 sites: smallvec![Generator::Site(i), Generator::Site(i + 1)],
             });
             if i % 3 == 0 {
                 d.edges.push(Edge {
+                    clearance: Vec::new(),
                     sites: [Generator::Site(i), Generator::Site(i + 2)],
                     from: Some(i),
                     bisector: Vec::new(),

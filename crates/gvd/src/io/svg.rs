@@ -642,11 +642,13 @@ mod tests {
         let g = Generator::Site;
         let diagram = VoronoiComplex {
             vertices: vec![Vertex {
+                clearance: None,
                 at: p(0.0, 0.0),
                 sites: smallvec![g(0), g(1), g(2)],
             }],
             edges: vec![
                 Edge {
+                    clearance: Vec::new(),
                     sites: [g(0), g(1)],
                     from: Some(0),
                     bisector: Vec::new(),
@@ -654,6 +656,7 @@ mod tests {
                     points: smallvec![p(0.0, 0.0), p(0.1, -0.5), p(0.0, -1.0)],
                 },
                 Edge {
+                    clearance: Vec::new(),
                     sites: [g(0), g(2)],
                     from: Some(0),
                     bisector: Vec::new(),

@@ -176,6 +176,7 @@ fn build_complex(
         sites.sort_unstable();
         sites.dedup();
         out.vertices.push(Vertex {
+            clearance: None,
             at: sum * (1.0 / n as f64),
             sites: sites
                 .into_iter()
@@ -204,6 +205,7 @@ fn build_complex(
             continue;
         }
         out.edges.push(Edge {
+            clearance: Vec::new(),
             sites: [
                 Generator::Site(c.pair[0] as usize),
                 Generator::Site(c.pair[1] as usize),

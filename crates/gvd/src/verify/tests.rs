@@ -34,6 +34,7 @@ fn euclid(p: &[(f64, f64)]) -> Vec<SiteKind> {
 
 fn edge(a: usize, b: usize, from: Option<usize>, to: Option<usize>, pts: &[Point]) -> Edge {
     Edge {
+        clearance: Vec::new(),
         sites: [Generator::Site(a), Generator::Site(b)],
         from,
         bisector: Vec::new(),
@@ -44,6 +45,7 @@ fn edge(a: usize, b: usize, from: Option<usize>, to: Option<usize>, pts: &[Point
 
 fn vertex(at: Point, sites: &[usize]) -> Vertex {
     Vertex {
+        clearance: None,
         at,
         sites: sites.iter().map(|&s| Generator::Site(s)).collect(),
     }

@@ -127,6 +127,7 @@ fn output_vertices(d: &PointDiagram, nodes: &mut [Node], parent: Option<&[u32]>)
         let mut ids = g.gens[v].map(|s| d.input[s as usize]);
         ids.sort_unstable();
         Vertex {
+            clearance: None,
             at: nodes[v].at * inv,
             sites: ids.map(|i| Generator::Site(i as usize)).into(),
         }
@@ -170,6 +171,7 @@ fn output_edges(d: &PointDiagram, nodes: &[Node]) -> Vec<Edge> {
             clip(d, nodes, h, g.twin[h as usize]).expect("a kept edge");
         let (a, b) = (g.right(h), g.left(h));
         Edge {
+            clearance: Vec::new(),
             sites: [site(b), site(a)],
             from,
             to,

@@ -495,6 +495,7 @@ fn number(
                 to.and_then(&mut vertex_out)
             };
             out.edges.push(Edge {
+                clearance: Vec::new(),
                 sites,
                 from,
                 to,
@@ -508,6 +509,7 @@ fn number(
         let mut sites: SmallVec<[Generator; 3]> = labels.of_vertex(v).iter().copied().collect();
         sites.sort();
         Vertex {
+            clearance: None,
             at: raw_vertices[v].at,
             sites,
         }

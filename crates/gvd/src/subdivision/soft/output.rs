@@ -159,6 +159,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
             if run.is_empty() || t0 > 0.0 {
                 if run.len() >= 2 {
                     edges.push(Edge {
+                        clearance: Vec::new(),
                         sites: e.sites,
                         from: run_from,
                         to: None,
@@ -176,6 +177,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
             if t1 < 1.0 {
                 if run.len() >= 2 {
                     edges.push(Edge {
+                        clearance: Vec::new(),
                         sites: e.sites,
                         from: run_from,
                         to: None,
@@ -191,6 +193,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
             let to = e.to.filter(|&v| inside(c.vertices[v].at));
             let closed = e.from.is_none() && e.to.is_none() && run_from.is_none();
             edges.push(Edge {
+                clearance: Vec::new(),
                 sites: e.sites,
                 from: run_from,
                 to: if closed { None } else { to },

@@ -86,6 +86,10 @@ struct ComputeArgs {
     /// Draw the subdivision boxes in the picture.
     #[arg(long)]
     boxes: bool,
+    /// Draw the maximal empty disc at every vertex in the picture (complex and
+    /// medial_axis modes, where vertices carry their clearance).
+    #[arg(long)]
+    svg_discs: bool,
     /// Split boxes that hold two or more sites until no longer than this (finite, > 0).
     #[arg(long, value_parser = positive_length)]
     max_box: Option<f64>,
@@ -313,6 +317,15 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
     } else {
         eprintln!("{summary}");
     }
+    if let Some((c, r)) = d
+        .max_inscribed_circle()
+        .filter(|_| sc.mode() == gvd::Mode::MedialAxis)
+    {
+        eprintln!(
+            "gvd: largest inscribed circle: centre ({}, {}), radius {r}",
+            c.x, c.y
+        );
+    }
     if let Some(cuts) = split_summary(d) {
         eprintln!("gvd: {cuts} (--strict refuses such input)");
     }
@@ -332,6 +345,7 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
             } else {
                 Vec::new()
             },
+            discs: args.svg_discs,
             ..Default::default()
         };
         let svg = gvd::io::svg::render_svg(&sc, d, &opts);

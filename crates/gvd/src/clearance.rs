@@ -48,6 +48,27 @@ impl VoronoiComplex {
     }
 }
 
+impl VoronoiComplex {
+    /// The largest stored clearance, at a vertex or an edge point, with where it is:
+    /// in `medial_axis` mode the maximum inscribed circle of the regions (its centre
+    /// lies on the medial axis, where the distance to the boundary has its local
+    /// maxima). `None` before [`VoronoiComplex::add_clearances`] or without any.
+    pub fn max_inscribed_circle(&self) -> Option<(Point, f64)> {
+        let at_vertices = self
+            .vertices
+            .iter()
+            .filter_map(|v| v.clearance.map(|r| (v.at, r)));
+        let along_edges = self
+            .edges
+            .iter()
+            .flat_map(|e| e.points.iter().copied().zip(e.clearance.iter().copied()));
+        at_vertices
+            .chain(along_edges)
+            .filter(|(_, r)| r.is_finite())
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+    }
+}
+
 /// The least of the distances from `q` to `generators` ([`clearance`]); NaN if any is
 /// unknown or there are none.
 pub(crate) fn generators_clearance(scene: &Scene, generators: &[Generator], q: Point) -> f64 {
@@ -89,9 +110,9 @@ pub(crate) fn clearance(scene: &Scene, generator: &Generator, q: Point) -> f64 {
 /// its own foot; a segment or polygon edge gives the orthogonal projection clamped to
 /// it; an arc the radial projection `c + r·(q − c)/|q − c|` where the arc spans that
 /// direction, else its nearer end; a circle the radial projection; a whole polyline or
-/// polygon the nearest of its edges' feet. `None` for the other kinds (point metrics,
-/// ellipses, algebraic and free-form curves, fields), for a circle's or arc's centre,
-/// and for an index out of range.
+/// polygon the nearest of its edges' feet (at a circle's or arc's centre, where every
+/// point is nearest, the one at angle 0). `None` for the other kinds (point metrics,
+/// ellipses, algebraic and free-form curves, fields) and for an index out of range.
 pub(crate) fn foot(scene: &Scene, generator: &Generator, q: Point) -> Option<Point> {
     let site = scene.sites().get(generator.site())?;
     if let Generator::Feature { feature, index, .. } = *generator {
@@ -104,10 +125,16 @@ pub(crate) fn foot(scene: &Scene, generator: &Generator, q: Point) -> Option<Poi
             FeatureKind::Piece => {}
         }
     }
+    // At the centre every point of the circle is nearest: take the one at angle 0 (an
+    // arc reaches here only if it spans that angle).
     let radial = |center: Point, radius: f64| {
         let d = q - center;
         let n = d.norm();
-        (n > 0.0).then(|| center + d * (radius / n))
+        Some(if n > 0.0 {
+            center + d * (radius / n)
+        } else {
+            center + Point::new(radius, 0.0)
+        })
     };
     match &site.kind {
         SiteKind::Point {
@@ -138,30 +165,42 @@ pub(crate) fn foot(scene: &Scene, generator: &Generator, q: Point) -> Option<Poi
     }
 }
 
-/// The edges of a polyline, or of a polygon's rings in order (numbered as the
-/// features are); `None` for other kinds.
-fn chain_edges(site: &Site) -> Option<impl Iterator<Item = (Point, Point)> + '_> {
+/// The edges of a segment (itself), a polyline, or a polygon's rings in order
+/// (numbered as the features are); `None` for other kinds.
+fn chain_edges(site: &Site) -> Option<Box<dyn Iterator<Item = (Point, Point)> + '_>> {
     fn chain(points: &[Point], closed: bool) -> impl Iterator<Item = (Point, Point)> + '_ {
         let n = points.len();
         let edges = if closed { n } else { n.saturating_sub(1) };
         (0..edges).map(move |k| (points[k], points[(k + 1) % n]))
     }
     let rings: Vec<(&[Point], bool)> = match &site.kind {
+        SiteKind::Segment { from, to } => return Some(Box::new(std::iter::once((*from, *to)))),
         SiteKind::Polyline { points } => vec![(points.as_slice(), false)],
         SiteKind::Polygon { rings } => rings.iter().map(|r| (r.as_slice(), true)).collect(),
         _ => return None,
     };
-    Some(
+    Some(Box::new(
         rings
             .into_iter()
             .flat_map(move |(r, closed)| chain(r, closed)),
-    )
+    ))
 }
 
-/// The corners of a polyline (its points) or of a polygon (its rings' points in
-/// order); `None` for other kinds.
+/// The corners of a segment or an arc (its ends), a polyline (its points) or a polygon
+/// (its rings' points in order); `None` for other kinds.
 fn corners(site: &Site) -> Option<Vec<Point>> {
     match &site.kind {
+        SiteKind::Segment { from, to } => Some(vec![*from, *to]),
+        SiteKind::Arc {
+            center,
+            radius,
+            start_angle,
+            end_angle,
+        } => Some(
+            Arc::from_angles(*center, *radius, *start_angle, *end_angle)
+                .ends()
+                .to_vec(),
+        ),
         SiteKind::Polyline { points } => Some(points.clone()),
         SiteKind::Polygon { rings } => Some(rings.iter().flatten().copied().collect()),
         _ => None,

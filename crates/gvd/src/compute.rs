@@ -107,11 +107,21 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 /// The diagram carries the sites' user ids ([`VoronoiComplex::site_ids`]) when any site
 /// has one, and in `complex` and `medial_axis` modes the clearance of its vertices and
 /// edge points ([`VoronoiComplex::add_clearances`]; not in `voronoi` mode, whose
-/// diagrams of millions of points would grow by a number per point for little use).
+/// diagrams of millions of points would grow by a number per point for little use);
+/// in `medial_axis` mode also `stats.max_inscribed_circle`
+/// ([`VoronoiComplex::max_inscribed_circle`]).
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     let mut out = run_engine(scene, options)?;
     if scene.mode() != Mode::Voronoi {
         out.complex.add_clearances(scene);
+    }
+    if scene.mode() == Mode::MedialAxis {
+        if let Some((center, radius)) = out.complex.max_inscribed_circle() {
+            out.complex.stats.insert(
+                "max_inscribed_circle".into(),
+                serde_json::json!({ "center": [center.x, center.y], "radius": radius }),
+            );
+        }
     }
     if scene.sites().iter().any(|s| s.id.is_some()) {
         out.complex.site_ids = scene.sites().iter().map(|s| s.id.clone()).collect();

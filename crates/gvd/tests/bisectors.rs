@@ -193,13 +193,24 @@ fn bisectors_are_only_given_when_asked() {
 fn pictures_colour_exact_edges_by_clearance() {
     let s = scene("examples/scenes/slot-pocket.json");
     let opts = gvd::io::svg::SvgOptions::default();
-    let plain =
-        gvd::io::svg::render_svg(&s, &gvd::compute(&s, &Options::default()).unwrap(), &opts);
-    assert!(!plain.contains("clearance-legend") && !plain.contains("<line "));
-    let exact = gvd::io::svg::render_svg(&s, &with_bisectors(&s), &opts);
+    // Without exact bisectors, each polyline step is coloured by its points' clearance.
+    let d = gvd::compute(&s, &Options::default()).unwrap();
+    let plain = gvd::io::svg::render_svg(&s, &d, &opts);
+    let steps: usize = d.edges.iter().map(|e| e.points.len() - 1).sum();
+    assert!(plain.contains("clearance-legend"));
+    assert_eq!(plain.matches("<line ").count(), steps);
+    // With them, each piece is drawn in eight strokes from its form (and an edge without
+    // one step by step).
+    let exact_diagram = with_bisectors(&s);
+    let pieces: usize = exact_diagram.edges.iter().map(|e| e.bisector.len()).sum();
+    assert!(pieces >= 30, "{pieces} pieces");
+    let bare_steps: usize = exact_diagram
+        .edges
+        .iter()
+        .filter(|e| e.bisector.is_empty())
+        .map(|e| e.points.len() - 1)
+        .sum();
+    let exact = gvd::io::svg::render_svg(&s, &exact_diagram, &opts);
     assert!(exact.contains("clearance-legend") && exact.contains("clearance 0 … "));
-    assert!(
-        exact.matches("<line ").count() >= 8 * 30,
-        "too few clearance strokes"
-    );
+    assert_eq!(exact.matches("<line ").count(), 8 * pieces + bare_steps);
 }

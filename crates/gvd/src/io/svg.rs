@@ -20,6 +20,9 @@ pub struct SvgOptions {
     pub boxes: Vec<(Aabb, usize)>,
     /// The picture's width in pixels (the height follows the domain's aspect).
     pub width_px: f64,
+    /// Draw the maximal empty disc at each vertex that knows its clearance
+    /// ([`crate::complex::Vertex::clearance`]), as a thin circle.
+    pub discs: bool,
 }
 
 impl Default for SvgOptions {
@@ -27,6 +30,7 @@ impl Default for SvgOptions {
         SvgOptions {
             boxes: Vec::new(),
             width_px: 800.0,
+            discs: false,
         }
     }
 }
@@ -161,6 +165,25 @@ pub fn render_svg(scene: &Scene, diagram: &VoronoiComplex, opts: &SvgOptions) ->
     if t_max > 0.0 {
         write_clearance_legend(&mut s, scene.domain(), &f, t_max);
     }
+    if opts.discs {
+        let _ = writeln!(
+            s,
+            "<g id=\"discs\" fill=\"none\" stroke=\"#d32f2f\" stroke-opacity=\"0.5\" stroke-width=\"{}\">",
+            sw(0.001)
+        );
+        for v in &diagram.vertices {
+            if let Some(r) = v.clearance.filter(|r| *r > 0.0) {
+                let _ = writeln!(
+                    s,
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
+                    f.num(v.at.x),
+                    f.num(-v.at.y),
+                    f.num(r)
+                );
+            }
+        }
+        s.push_str("</g>\n");
+    }
     let _ = writeln!(s, "<g id=\"vertices\" fill=\"#d32f2f\">");
     for v in &diagram.vertices {
         let _ = writeln!(
@@ -285,9 +308,10 @@ fn write_domain(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
     );
 }
 
-/// The diagram's edges as polylines of the given colour and width.
-/// Returns the largest clearance of the edges' exact bisectors (0 without them), for
-/// the legend of their colours.
+/// The diagram's edges as polylines of the given colour and width, or coloured by
+/// clearance where known: from their exact bisectors, else from their points'
+/// clearances ([`crate::complex::Edge::clearance`]). Returns the largest clearance drawn
+/// (0 if none), for the legend of the colours.
 fn write_edges(
     s: &mut String,
     diagram: &VoronoiComplex,
@@ -299,14 +323,33 @@ fn write_edges(
         s,
         "<g id=\"edges\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"{width}\" stroke-linejoin=\"round\" stroke-linecap=\"round\">"
     );
-    // Edges with exact bisectors are drawn from them, coloured by clearance.
     let t_max = diagram
         .edges
         .iter()
-        .flat_map(|e| e.bisector.iter().flat_map(|p| p.t))
+        .flat_map(|e| {
+            let exact = e.bisector.iter().flat_map(|p| p.t);
+            exact.chain(e.clearance.iter().copied())
+        })
         .filter(|t| t.is_finite())
         .fold(0.0f64, f64::max);
+    let line = |s: &mut String, a: Point, b: Point, t: f64| {
+        let _ = writeln!(
+            s,
+            "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\"/>",
+            f.num(a.x),
+            f.num(-a.y),
+            f.num(b.x),
+            f.num(-b.y),
+            viridis(t / t_max)
+        );
+    };
     for e in &diagram.edges {
+        if t_max > 0.0 && e.bisector.is_empty() && !e.clearance.is_empty() {
+            for (p, r) in e.points.windows(2).zip(e.clearance.windows(2)) {
+                line(s, p[0], p[1], 0.5 * (r[0] + r[1]));
+            }
+            continue;
+        }
         if e.bisector.is_empty() || t_max <= 0.0 {
             let pts: Vec<String> = e.points.iter().map(|&p| f.pt(p)).collect();
             let _ = writeln!(s, "<polyline points=\"{}\"/>", pts.join(" "));
@@ -316,15 +359,11 @@ fn write_edges(
         for piece in &e.bisector {
             let t = |k: usize| piece.t[0] + (piece.t[1] - piece.t[0]) * k as f64 / STEPS as f64;
             for k in 0..STEPS {
-                let (a, b) = (piece.at(t(k)), piece.at(t(k + 1)));
-                let _ = writeln!(
+                line(
                     s,
-                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\"/>",
-                    f.num(a.x),
-                    f.num(-a.y),
-                    f.num(b.x),
-                    f.num(-b.y),
-                    viridis(0.5 * (t(k) + t(k + 1)) / t_max)
+                    piece.at(t(k)),
+                    piece.at(t(k + 1)),
+                    0.5 * (t(k) + t(k + 1)),
                 );
             }
         }

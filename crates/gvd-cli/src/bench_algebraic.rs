@@ -3,7 +3,6 @@
 //! subdivision counts.
 
 use gvd::scene::Scene;
-use std::time::Instant;
 
 /// The paper's examples, as shipped in `examples/scenes/`, with its figures: CPU
 /// seconds (Mathematica 5.0 on a 1.6 GHz Pentium T2330) and total subdivisions.
@@ -50,23 +49,18 @@ struct Row {
 }
 
 fn run(scene: &Scene, options: &gvd::Options, repeat: usize) -> Result<Row, gvd::Error> {
-    let mut best: Option<Row> = None;
-    for _ in 0..repeat {
-        let start = Instant::now();
-        let d = gvd::compute(scene, options)?;
-        let seconds = start.elapsed().as_secs_f64();
+    let (seconds, mut row) = crate::bench::best_run(scene, options, repeat, |d| {
         let stat = |k: &str| d.stats.get(k).and_then(|v| v.as_u64()).unwrap_or(0);
-        if best.as_ref().is_none_or(|b| seconds < b.seconds) {
-            best = Some(Row {
-                seconds,
-                boxes: stat("boxes"),
-                uncertified: stat("uncertified_boxes"),
-                vertices: d.vertices.len(),
-                edges: d.edges.len(),
-            });
+        Row {
+            seconds: 0.0,
+            boxes: stat("boxes"),
+            uncertified: stat("uncertified_boxes"),
+            vertices: d.vertices.len(),
+            edges: d.edges.len(),
         }
-    }
-    Ok(best.expect("repeat is at least 1"))
+    })?;
+    row.seconds = seconds;
+    Ok(row)
 }
 
 pub fn shou(large: bool, repeat: usize) {

@@ -223,22 +223,19 @@ fn timed(scene: &Scene, options: &gvd::Options) -> Result<(f64, gvd::VoronoiComp
 /// The soft engine with `filters`, best of `repeat`.
 fn soft(scene: &Scene, filters: SoftFilters, repeat: usize) -> Result<SoftRow, gvd::Error> {
     let options = options(gvd::Engine::Subdivision, filters, Some(TABLE_BOXES));
-    let mut best: Option<SoftRow> = None;
-    for _ in 0..repeat {
-        let (seconds, d) = timed(scene, &options)?;
+    let (seconds, mut row) = crate::bench::best_run(scene, &options, repeat, |d| {
         let stat = |k: &str| d.stats.get(k).and_then(|v| v.as_u64()).unwrap_or(0);
-        if best.as_ref().is_none_or(|b| seconds < b.seconds) {
-            best = Some(SoftRow {
-                seconds,
-                subdivision_leaves: stat("leaves_after_subdivision"),
-                leaves: stat("leaves"),
-                uncertified: stat("uncertified_boxes"),
-                vertices: d.vertices.len(),
-                edges: d.edges.len(),
-            });
+        SoftRow {
+            seconds: 0.0,
+            subdivision_leaves: stat("leaves_after_subdivision"),
+            leaves: stat("leaves"),
+            uncertified: stat("uncertified_boxes"),
+            vertices: d.vertices.len(),
+            edges: d.edges.len(),
         }
-    }
-    Ok(best.expect("repeat is at least 1"))
+    })?;
+    row.seconds = seconds;
+    Ok(row)
 }
 
 /// Prints the rows of one scene, one per filter setting, with the paper's counts

@@ -2,6 +2,7 @@
 
 mod bench;
 mod bench_algebraic;
+mod bench_freeform;
 mod bench_implicit;
 mod bench_soft;
 mod formats;
@@ -181,7 +182,7 @@ struct VerifyArgs {
 
 #[derive(Args)]
 struct BenchArgs {
-    /// Which table: `emiris-table1`, `implicit`, `shou` or `soft`.
+    /// Which table: `emiris-table1`, `implicit`, `shou`, `soft` or `freeform`.
     table: String,
     /// Larger runs: 10^4 and 10^5 Euclidean sites and the multi-core speed-up
     /// (`emiris-table1`, `implicit`), no box cap per run (`shou`).
@@ -190,6 +191,9 @@ struct BenchArgs {
     /// Repetitions per row (the best time is reported).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=1000))]
     repeat: u64,
+    /// Only the shipped scenes (`freeform`), for tests.
+    #[arg(long, hide = true)]
+    quick: bool,
 }
 
 /// A finite number > 0 (NaN, infinities, zero and negatives are refused).
@@ -456,8 +460,9 @@ fn bench(args: BenchArgs) -> Result<ExitCode> {
         "implicit" => bench_implicit::implicit(args.large, repeat),
         "shou" => bench_algebraic::shou(args.large, repeat),
         "soft" => bench_soft::soft_table(repeat),
+        "freeform" => bench_freeform::freeform_table(repeat, args.quick)?,
         other => bail!(
-            "unknown table '{}' (known: emiris-table1, implicit, shou, soft)",
+            "unknown table '{}' (known: emiris-table1, implicit, shou, soft, freeform)",
             clip(other)
         ),
     }

@@ -298,3 +298,35 @@ fn unknown_fields_are_warned_about_and_ignored() {
     assert!(err.contains("unknown field 'source' (ignored)"), "{err}");
     assert!(written.exists());
 }
+
+/// `gvd bench freeform --quick` (the shipped scenes only: the full table takes longer
+/// than a test should) prints a row per scene and no empty diagram.
+#[test]
+fn bench_freeform_quick_rows() {
+    let out = gvd()
+        .args(["bench", "freeform", "--repeat", "1", "--quick"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for scene in [
+        "bezier4",
+        "closed6",
+        "convex3",
+        "deep concavity",
+        "nonconvex2",
+        "piecewise C1",
+    ] {
+        assert!(
+            text.lines()
+                .any(|l| l.starts_with(scene) && l.contains('|')),
+            "no row for {scene}:\n{text}"
+        );
+    }
+    assert!(!text.contains("empty"), "{text}");
+    assert!(text.contains("Hanniel"), "{text}");
+}

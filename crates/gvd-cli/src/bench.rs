@@ -117,15 +117,8 @@ pub fn random_scene(kind: &str, n: usize, seed: u64) -> Scene {
 
 /// Best wall-clock seconds over `repeat` runs, and the box count.
 fn time(scene: &Scene, options: &gvd::Options, repeat: usize) -> (f64, u64) {
-    let mut best = f64::INFINITY;
-    let mut boxes = 0;
-    for _ in 0..repeat {
-        let t = Instant::now();
-        let d = gvd::compute(scene, options).expect("benchmark scenes are valid");
-        best = best.min(t.elapsed().as_secs_f64());
-        boxes = d.stats.get("boxes").and_then(|v| v.as_u64()).unwrap_or(0);
-    }
-    (best, boxes)
+    best_run(scene, options, repeat, |d| count_stat(d, "boxes"))
+        .expect("benchmark scenes are valid")
 }
 
 /// Times one Table 1 row for every n and prints it beside the paper's figures.
@@ -216,6 +209,11 @@ pub fn emiris_table1(large: bool, repeat: usize) {
             );
         }
     }
+}
+
+/// A count in the diagram's `stats` (0 when absent).
+pub fn count_stat(d: &gvd::VoronoiComplex, key: &str) -> u64 {
+    d.stats.get(key).and_then(|v| v.as_u64()).unwrap_or(0)
 }
 
 /// `gvd::compute` on `scene` `repeat` times (at least once): the best seconds, with

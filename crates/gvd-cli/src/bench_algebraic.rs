@@ -50,7 +50,7 @@ struct Row {
 
 fn run(scene: &Scene, options: &gvd::Options, repeat: usize) -> Result<Row, gvd::Error> {
     let (seconds, mut row) = crate::bench::best_run(scene, options, repeat, |d| {
-        let stat = |k: &str| d.stats.get(k).and_then(|v| v.as_u64()).unwrap_or(0);
+        let stat = |k: &str| crate::bench::count_stat(d, k);
         Row {
             seconds: 0.0,
             boxes: stat("boxes"),

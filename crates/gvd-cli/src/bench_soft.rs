@@ -224,7 +224,7 @@ fn timed(scene: &Scene, options: &gvd::Options) -> Result<(f64, gvd::VoronoiComp
 fn soft(scene: &Scene, filters: SoftFilters, repeat: usize) -> Result<SoftRow, gvd::Error> {
     let options = options(gvd::Engine::Subdivision, filters, Some(TABLE_BOXES));
     let (seconds, mut row) = crate::bench::best_run(scene, &options, repeat, |d| {
-        let stat = |k: &str| d.stats.get(k).and_then(|v| v.as_u64()).unwrap_or(0);
+        let stat = |k: &str| crate::bench::count_stat(d, k);
         SoftRow {
             seconds: 0.0,
             subdivision_leaves: stat("leaves_after_subdivision"),

@@ -102,18 +102,27 @@ def compute(
     bisectors: bool = False,
     strict: bool = False,
     timeout: Optional[float] = None,
+    prune_lambda: Optional[float] = None,
+    prune_angle: Optional[float] = None,
 ) -> Diagram:
     """Computes the Voronoi diagram (or complex, or medial axis: the scene's ``mode``).
 
     ``scene``: a ``gvd.Scene``, a dict or JSON text in the scene format, a path, or a
     shapely geometry. ``engine``: ``"auto"`` (the incremental engine where it applies),
-    ``"incremental"`` (Euclidean points, segments, arcs, polylines, polygons) or
-    ``"subdivision"`` (every site kind). ``max_box``, ``max_boxes`` and ``max_points``
+    ``"incremental"`` (Euclidean points, segments, arcs, polylines, polygons),
+    ``"subdivision"`` (every site kind but free-form curves) or ``"freeform"`` (Bézier
+    and B-spline curves). ``max_box``, ``max_boxes`` and ``max_points``
     tune the subdivision engine; ``bisectors`` gives the incremental engine's edges
     their exact bisectors. Segments that cross, overlap or touch are cut into pieces
     that keep their site's index; ``strict=True`` refuses them instead, naming both
     sites. ``timeout`` (seconds) bounds the run. The GIL is released while it
     computes, and Ctrl-C stops it (``KeyboardInterrupt``).
+
+    ``prune_lambda`` (a length) and ``prune_angle`` (degrees) prune the medial axis: a
+    point stays when its two nearest boundary points are at least ``2 * prune_lambda``
+    apart (the λ-medial axis) and subtend at least ``prune_angle`` there (the object
+    angle). Cut branches end at vertices of degree one; vertices of degree two are
+    merged away.
 
     Raises ``SceneError`` (with ``.site`` and ``.field``) for refused scenes,
     ``UnsupportedError``, ``BudgetError`` (also when ``timeout`` runs out, with
@@ -129,6 +138,8 @@ def compute(
         bisectors=bisectors,
         strict=strict,
         timeout=timeout,
+        prune_lambda=prune_lambda,
+        prune_angle=prune_angle,
     )
 
 

@@ -195,3 +195,17 @@ def test_ctrl_c_stops_the_run():
     # the signal also raises once the run is over: only a stop well before its end shows
     # that the run itself was cancelled
     assert time.monotonic() - start < 1.0
+
+
+def test_pruning_the_medial_axis():
+    # a square with a small slot in one side: the slot's branch goes at lambda 0.1
+    s = gvd.Scene([-2, -2, 2, 2], mode="medial_axis")
+    s.add_polygon([[[-1, -1], [-0.05, -1], [-0.05, -1.1], [0.05, -1.1], [0.05, -1], [1, -1], [1, 1], [-1, 1]]])
+    whole = gvd.compute(s)
+    pruned = gvd.compute(s, prune_lambda=0.1)
+    assert pruned.stats["pruning"]["edges_before"] == len(whole.edges)
+    assert len(pruned.edge_offsets) < len(whole.edge_offsets)
+    assert (pruned.edge_points[:, 1] > -1 + 1e-9).all()
+    assert (whole.edge_points[:, 1] < -1).any()
+    with pytest.raises(gvd.OptionError):
+        gvd.compute(s, prune_angle=0.0)

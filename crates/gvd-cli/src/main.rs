@@ -118,6 +118,14 @@ struct ComputeArgs {
     /// points on segments (naming the sites), instead of splitting them there.
     #[arg(long)]
     strict: bool,
+    /// Prune the medial axis to its λ-medial axis: keep the points whose two nearest
+    /// boundary points are at least 2λ apart (a length of the scene).
+    #[arg(long, value_name = "LAMBDA", value_parser = positive_length)]
+    prune_lambda: Option<f64>,
+    /// Prune the medial axis by the object angle: keep the points whose two nearest
+    /// boundary points subtend at least this angle there (degrees, in (0, 180]).
+    #[arg(long, value_name = "DEGREES", value_parser = object_angle_degrees)]
+    prune_angle: Option<f64>,
     /// Soft-predicate engine (segments, polylines, polygons with `--engine
     /// subdivision`): no zone filter, every feature within reach belongs to a box.
     #[arg(long)]
@@ -201,6 +209,15 @@ fn positive_length(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
         Ok(x) => Err(format!("must be a finite number > 0, found {x}")),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// An angle in degrees in (0, 180].
+fn object_angle_degrees(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x > 0.0 && x <= 180.0 => Ok(x),
+        Ok(x) => Err(format!("must be an angle in (0, 180] degrees, found {x}")),
         Err(e) => Err(e.to_string()),
     }
 }
@@ -297,6 +314,10 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
             strict: args.strict,
         },
         control,
+        prune: gvd::Pruning {
+            lambda: args.prune_lambda,
+            object_angle: args.prune_angle.map(f64::to_radians),
+        },
     };
     let out = gvd::compute_with_boxes(&sc, &options);
     progress::finish(bar);
@@ -328,6 +349,12 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
         eprintln!(
             "gvd: largest inscribed circle: centre ({}, {}), radius {r}",
             c.x, c.y
+        );
+    }
+    if let Some(p) = d.stats.get("pruning") {
+        eprintln!(
+            "gvd: pruned from {} vertices and {} edges ({} branch ends cut, {} vertices of degree two merged)",
+            p["vertices_before"], p["edges_before"], p["cut_ends"], p["merged_vertices"]
         );
     }
     if let Some(cuts) = split_summary(d) {

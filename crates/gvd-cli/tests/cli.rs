@@ -330,3 +330,39 @@ fn bench_freeform_quick_rows() {
     assert!(!text.contains("empty"), "{text}");
     assert!(text.contains("Hanniel"), "{text}");
 }
+
+#[test]
+fn compute_prunes_the_medial_axis() {
+    let json = scratch("serrated-pruned.json");
+    compute_ok(
+        "serrated-pocket.json",
+        &[
+            "--prune-lambda".as_ref(),
+            "0.1".as_ref(),
+            "--json".as_ref(),
+            json.as_ref(),
+        ],
+    );
+    let d: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let pruning = &d["stats"]["pruning"];
+    assert_eq!(pruning["lambda"], 0.1);
+    let edges = d["edges"].as_array().unwrap().len();
+    assert!(edges * 4 < pruning["edges_before"].as_u64().unwrap() as usize);
+    assert!(d["edges"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|e| e.get("sites_along").is_some()));
+    for bad in ["0", "181", "nan"] {
+        let out = gvd()
+            .arg("compute")
+            .arg(repo("examples/scenes/serrated-pocket.json"))
+            .args(["--prune-angle", bad, "--json"])
+            .arg(scratch("refused.json"))
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "--prune-angle {bad}");
+        assert!(!scratch("refused.json").exists());
+    }
+}

@@ -25,7 +25,7 @@ use std::time::Duration;
 #[pyfunction]
 // the keyword arguments of the Python function
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (scene, engine="auto", *, parallel=true, max_box=None, max_boxes=None, max_points=None, bisectors=false, strict=false, timeout=None))]
+#[pyo3(signature = (scene, engine="auto", *, parallel=true, max_box=None, max_boxes=None, max_points=None, bisectors=false, strict=false, timeout=None, prune_lambda=None, prune_angle=None))]
 fn compute(
     py: Python<'_>,
     scene: &mut PyScene,
@@ -37,15 +37,20 @@ fn compute(
     bisectors: bool,
     strict: bool,
     timeout: Option<f64>,
+    prune_lambda: Option<f64>,
+    prune_angle: Option<f64>,
 ) -> PyResult<PyDiagram> {
     let engine = match engine {
         "auto" => gvd::Engine::Auto,
         "subdivision" => gvd::Engine::Subdivision,
         "incremental" => gvd::Engine::Incremental,
+        "freeform" => gvd::Engine::Freeform,
         other => {
             return Err(option_error(
                 "engine",
-                format!("unknown engine '{other}' (known: auto, subdivision, incremental)"),
+                format!(
+                    "unknown engine '{other}' (known: auto, subdivision, incremental, freeform)"
+                ),
             ))
         }
     };
@@ -84,6 +89,10 @@ fn compute(
             cancel: Some(cancel.clone()),
             timeout,
             progress: None,
+        },
+        prune: gvd::Pruning {
+            lambda: prune_lambda,
+            object_angle: prune_angle.map(f64::to_radians),
         },
     };
     let scene = scene.scene()?;

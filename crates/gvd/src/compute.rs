@@ -1,6 +1,7 @@
 //! The library's entry point: a scene in, its Voronoi complex out.
 
 use crate::complex::cells;
+use crate::complex::prune::{prune, Pruning};
 use crate::complex::VoronoiComplex;
 use crate::control::{Control, Watch};
 use crate::error::Error;
@@ -44,6 +45,10 @@ pub struct Options {
     /// Stopping and watching the run from outside: a cancel flag, a time limit, a
     /// progress callback (none by default). Every engine heeds it.
     pub control: Control,
+    /// Pruning of the medial axis (λ-medial axis, object angle; none by default), after
+    /// the clearances and the largest inscribed circle are taken: see
+    /// [`crate::complex::prune`].
+    pub prune: Pruning,
 }
 
 /// Knobs of the subdivision engine (EMM13).
@@ -85,6 +90,7 @@ impl Default for Options {
             subdivision: SubdivisionOptions::default(),
             incremental: IncrementalOptions::default(),
             control: Control::default(),
+            prune: Pruning::default(),
         }
     }
 }
@@ -109,8 +115,17 @@ pub fn compute(scene: &Scene, options: &Options) -> Result<VoronoiComplex, Error
 /// edge points ([`VoronoiComplex::add_clearances`]; not in `voronoi` mode, whose
 /// diagrams of millions of points would grow by a number per point for little use);
 /// in `medial_axis` mode also `stats.max_inscribed_circle`
-/// ([`VoronoiComplex::max_inscribed_circle`]).
+/// ([`VoronoiComplex::max_inscribed_circle`]). Then, when `options.prune` sets a
+/// criterion, the diagram is pruned ([`crate::complex::prune::prune`]) and
+/// `stats.pruning` says how.
 pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computation, Error> {
+    options.prune.check()?;
+    if options.prune.is_on() && options.incremental.bisectors {
+        return Err(Error::InvalidOption {
+            option: "prune".into(),
+            message: "pruning does not cut exact bisector pieces: leave out the bisectors".into(),
+        });
+    }
     let mut out = run_engine(scene, options)?;
     if scene.mode() != Mode::Voronoi {
         out.complex.add_clearances(scene);
@@ -122,6 +137,18 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
                 serde_json::json!({ "center": [center.x, center.y], "radius": radius }),
             );
         }
+    }
+    if options.prune.is_on() {
+        let counts = prune(&mut out.complex, scene, &options.prune)?;
+        let stats = serde_json::json!({
+            "lambda": options.prune.lambda,
+            "object_angle_degrees": options.prune.object_angle.map(f64::to_degrees),
+            "edges_before": counts.edges_before,
+            "vertices_before": counts.vertices_before,
+            "cut_ends": counts.cut_ends,
+            "merged_vertices": counts.merged_vertices,
+        });
+        out.complex.stats.insert("pruning".into(), stats);
     }
     if scene.sites().iter().any(|s| s.id.is_some()) {
         out.complex.site_ids = scene.sites().iter().map(|s| s.id.clone()).collect();

@@ -49,6 +49,7 @@ mod site;
 mod subdivision;
 pub mod verify;
 
+pub use complex::prune::Pruning;
 pub use complex::VoronoiComplex;
 pub use compute::{
     compute, compute_with_boxes, Computation, Engine, IncrementalOptions, Options,

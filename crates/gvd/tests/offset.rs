@@ -295,6 +295,7 @@ fn edge(site: usize, index: usize) -> Generator {
 fn diagram_edge(sites: [Generator; 2], points: Vec<Point>) -> Edge {
     Edge {
         clearance: Vec::new(),
+        sites_along: Vec::new(),
         sites,
         from: None,
         bisector: Vec::new(),

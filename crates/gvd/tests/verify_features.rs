@@ -249,6 +249,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
         edges: vec![
             Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites: [edge_gen(0, 0), edge_gen(0, 2)],
                 from: Some(0),
                 bisector: Vec::new(),
@@ -257,6 +258,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
             },
             Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites: [edge_gen(0, 0), edge_gen(0, 3)],
                 from: None,
                 bisector: Vec::new(),
@@ -265,6 +267,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
             },
             Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites: [edge_gen(0, 2), edge_gen(0, 3)],
                 from: None,
                 bisector: Vec::new(),
@@ -273,6 +276,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
             },
             Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites: [edge_gen(0, 0), edge_gen(0, 1)],
                 from: None,
                 bisector: Vec::new(),
@@ -281,6 +285,7 @@ fn rectangle_medial_axis() -> (Scene, VoronoiComplex) {
             },
             Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites: [edge_gen(0, 1), edge_gen(0, 2)],
                 from: None,
                 bisector: Vec::new(),
@@ -323,6 +328,7 @@ fn medial_axis_outside_the_region_and_zone_boundaries_fail() {
     let d = VoronoiComplex {
         edges: vec![Edge {
             clearance: Vec::new(),
+            sites_along: Vec::new(),
             sites: [corner(0, 1), edge_gen(0, 0)],
             from: None,
             bisector: Vec::new(),

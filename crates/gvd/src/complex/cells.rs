@@ -590,6 +590,7 @@ mod tests {
     fn edge(sites: [usize; 2], ends: [Option<usize>; 2], a: Point, b: Point, n: usize) -> Edge {
         Edge {
             clearance: Vec::new(),
+            sites_along: Vec::new(),
             sites: sites.map(Generator::Site),
             from: ends[0],
             bisector: Vec::new(),
@@ -795,6 +796,7 @@ mod tests {
             .into_iter()
             .map(|(s, points)| Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites: s.map(Generator::Site),
                 from: None,
                 bisector: Vec::new(),

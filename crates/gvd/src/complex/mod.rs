@@ -2,6 +2,7 @@
 //! edges and cells, as `../SCENE_FORMAT.md` ("Diagram") defines it.
 
 pub(crate) mod cells;
+pub mod prune;
 
 use crate::geom::Point;
 use serde::{Deserialize, Serialize};
@@ -84,6 +85,20 @@ pub struct Edge {
     /// known and asked for ([`VoronoiComplex::add_clearances`]); empty otherwise.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub clearance: Vec<f64>,
+    /// Where the generators change along the edge: only on edges that pruning joined
+    /// across a vertex of degree two ([`prune`]). `sites` are the generators from
+    /// `points[0]`; each change's from `points[start]` on, in increasing `start`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sites_along: Vec<SitesChange>,
+}
+
+/// A change of an edge's generators ([`Edge::sites_along`]).
+#[derive(Clone, Copy, PartialEq, Debug, Serialize, Deserialize)]
+pub struct SitesChange {
+    /// The index in the edge's `points` where the new generators take over.
+    pub start: usize,
+    /// The two generators from there on.
+    pub sites: [Generator; 2],
 }
 
 /// One piece of an edge's bisector in Held's offset-parameter form (Hel01): with `t` the clearance (the distance to both
@@ -196,11 +211,23 @@ impl VoronoiComplex {
                     e.points.len()
                 ));
             }
-            for end in [e.from, e.to].into_iter().flatten() {
+            let mut start = 0;
+            for change in &e.sites_along {
+                if change.start <= start || change.start + 1 >= e.points.len() {
+                    return Err(format!(
+                        "edge {k}'s generators change at point {} out of order",
+                        change.start
+                    ));
+                }
+                start = change.start;
+            }
+            let last_sites = e.sites_along.last().map_or(e.sites, |c| c.sites);
+            for (end, sites) in [(e.from, e.sites), (e.to, last_sites)] {
+                let Some(end) = end else { continue };
                 let Some(v) = self.vertices.get(end) else {
                     return Err(format!("edge {k} names vertex {end}, which does not exist"));
                 };
-                if !e.sites.iter().all(|g| v.sites.contains(g)) {
+                if !sites.iter().all(|g| v.sites.contains(g)) {
                     return Err(format!(
                         "edge {k} ends at vertex {end}, which does not list the edge's generators"
                     ));

@@ -168,6 +168,7 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usi
         }
         complex.edges.push(Edge {
             clearance: Vec::new(),
+            sites_along: Vec::new(),
             sites: g,
             from,
             to,

@@ -242,6 +242,7 @@ mod tests {
             }],
             edges: vec![Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites: [Generator::Site(0), Generator::Site(3)],
                 from: Some(0),
                 bisector: Vec::new(),
@@ -287,6 +288,7 @@ mod tests {
             if i % 3 == 0 {
                 d.edges.push(Edge {
                     clearance: Vec::new(),
+                    sites_along: Vec::new(),
                     sites: [Generator::Site(i), Generator::Site(i + 2)],
                     from: Some(i),
                     bisector: Vec::new(),

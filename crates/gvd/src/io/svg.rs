@@ -688,6 +688,7 @@ mod tests {
             edges: vec![
                 Edge {
                     clearance: Vec::new(),
+                    sites_along: Vec::new(),
                     sites: [g(0), g(1)],
                     from: Some(0),
                     bisector: Vec::new(),
@@ -696,6 +697,7 @@ mod tests {
                 },
                 Edge {
                     clearance: Vec::new(),
+                    sites_along: Vec::new(),
                     sites: [g(0), g(2)],
                     from: Some(0),
                     bisector: Vec::new(),

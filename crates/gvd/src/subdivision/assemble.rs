@@ -206,6 +206,7 @@ fn build_complex(
         }
         out.edges.push(Edge {
             clearance: Vec::new(),
+            sites_along: Vec::new(),
             sites: [
                 Generator::Site(c.pair[0] as usize),
                 Generator::Site(c.pair[1] as usize),

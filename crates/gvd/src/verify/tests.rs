@@ -35,6 +35,7 @@ fn euclid(p: &[(f64, f64)]) -> Vec<SiteKind> {
 fn edge(a: usize, b: usize, from: Option<usize>, to: Option<usize>, pts: &[Point]) -> Edge {
     Edge {
         clearance: Vec::new(),
+        sites_along: Vec::new(),
         sites: [Generator::Site(a), Generator::Site(b)],
         from,
         bisector: Vec::new(),

@@ -172,6 +172,7 @@ fn output_edges(d: &PointDiagram, nodes: &[Node]) -> Vec<Edge> {
         let (a, b) = (g.right(h), g.left(h));
         Edge {
             clearance: Vec::new(),
+            sites_along: Vec::new(),
             sites: [site(b), site(a)],
             from,
             to,

@@ -496,6 +496,7 @@ fn number(
             };
             out.edges.push(Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites,
                 from,
                 to,

@@ -160,6 +160,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
                 if run.len() >= 2 {
                     edges.push(Edge {
                         clearance: Vec::new(),
+                        sites_along: Vec::new(),
                         sites: e.sites,
                         from: run_from,
                         to: None,
@@ -178,6 +179,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
                 if run.len() >= 2 {
                     edges.push(Edge {
                         clearance: Vec::new(),
+                        sites_along: Vec::new(),
                         sites: e.sites,
                         from: run_from,
                         to: None,
@@ -194,6 +196,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
             let closed = e.from.is_none() && e.to.is_none() && run_from.is_none();
             edges.push(Edge {
                 clearance: Vec::new(),
+                sites_along: Vec::new(),
                 sites: e.sites,
                 from: run_from,
                 to: if closed { None } else { to },

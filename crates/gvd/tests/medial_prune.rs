@@ -327,3 +327,38 @@ fn pruning_refuses_what_it_cannot_do() {
         other => panic!("{:?}", other.map(|d| d.edges.len())),
     }
 }
+
+/// Both engines that compute polygons, the incremental and the soft-predicate one,
+/// prune the shipped serrated pocket to the same axis: the same counts, within epsilon.
+#[test]
+fn both_engines_prune_to_the_same_axis() {
+    let path = format!(
+        "{}/../../examples/scenes/serrated-pocket.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let sc = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let run = |engine| {
+        compute(
+            &sc,
+            &Options {
+                engine,
+                prune: lambda(0.1),
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let incremental = run(gvd::Engine::Incremental);
+    let soft = run(gvd::Engine::Subdivision);
+    assert_eq!(soft.stats["engine"], "subdivision");
+    assert_mended(&soft, "soft");
+    assert_eq!(
+        (incremental.vertices.len(), incremental.edges.len()),
+        (soft.vertices.len(), soft.edges.len())
+    );
+    for (a, b) in [(&incremental, &soft), (&soft, &incremental)] {
+        for q in all_points(a) {
+            assert!(distance_to(b, q) <= sc.epsilon(), "{q:?}");
+        }
+    }
+}

@@ -84,6 +84,34 @@ fn check_cells(scene: &Scene, n: usize) -> usize {
     checked
 }
 
+/// Segments cut from real data that share endpoints (a road network with junctions of
+/// degree four, a coastline): every site has its cell. Where a site names a shared end,
+/// the other's cell is bounded by its own zone boundary there, and a spur left where a
+/// vertex was merged within epsilon must not turn the edges around a vertex.
+#[test]
+fn segments_sharing_endpoints_each_get_their_cell() {
+    for name in [
+        "shared-endpoint-84segments.json",
+        "shared-endpoint-labels-3segments.json",
+        "shared-endpoint-4segments.json",
+    ] {
+        let path = format!(
+            "{}/tests/data/scenes/regressions/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let scene = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let d = compute(&scene, &Options::default()).unwrap();
+        let sites: Vec<usize> = d.cells.iter().map(|c| c.site).collect();
+        assert_eq!(
+            sites,
+            (0..scene.sites().len()).collect::<Vec<_>>(),
+            "{name}"
+        );
+        let checked = check_cells(&scene, 60);
+        assert!(checked > 400, "{name}: {checked} samples");
+    }
+}
+
 #[test]
 fn segments_tile_the_domain() {
     assert!(check_cells(&scene_file("segments-0200.json"), 60) > 3000);

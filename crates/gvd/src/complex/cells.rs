@@ -14,6 +14,10 @@ use std::f64::consts::TAU;
 /// Angles closer than this (radians) are ties, broken by the polylines' later points.
 const ANGLE_TIE: f64 = 1e-10;
 
+/// How far from a node (in units of the merge tolerance, 1e-10 of the domain) an edge's
+/// direction is taken: 1e-7 of the domain.
+const DEPARTURE_REACH: f64 = 1e3;
+
 /// The cells of the subdivision formed by `complex`'s edges and `domain`'s boundary.
 ///
 /// Edge ends without a vertex are snapped onto the boundary; closed loops without a
@@ -371,7 +375,7 @@ impl<'a> Graph<'a> {
     fn faces(mut self, complex: &VoronoiComplex) -> Vec<Face> {
         let on = self.merge_close_nodes(complex);
         let half = self.half_edges(complex, &on);
-        walk_faces(&half, self.nodes.len())
+        walk_faces(&half, self.nodes.len(), DEPARTURE_REACH * self.tol)
     }
 
     /// Merges the ends of edges shorter than `tol`, then boundary points closer than it;
@@ -460,7 +464,7 @@ impl<'a> Graph<'a> {
 /// The faces traced by the half-edges (twins `h` and `h ^ 1`) leaving `nodes` nodes:
 /// each face is the cycle of next half-edges, turning clockwise at each node, that never
 /// runs outside the domain.
-fn walk_faces(half: &[HalfEdge], nodes: usize) -> Vec<Face> {
+fn walk_faces(half: &[HalfEdge], nodes: usize, reach: f64) -> Vec<Face> {
     // Outgoing half-edges around each node, counter-clockwise.
     let mut out: Vec<Vec<usize>> = vec![Vec::new(); nodes];
     for (h, he) in half.iter().enumerate() {
@@ -468,7 +472,7 @@ fn walk_faces(half: &[HalfEdge], nodes: usize) -> Vec<Face> {
     }
     let mut pos = vec![0; half.len()];
     for list in &mut out {
-        sort_around(list, half);
+        sort_around(list, half, reach);
         for (i, &h) in list.iter().enumerate() {
             pos[h] = i;
         }
@@ -499,11 +503,17 @@ fn walk_faces(half: &[HalfEdge], nodes: usize) -> Vec<Face> {
     faces
 }
 
-/// Sorts half-edges leaving one node by the angle of their first segment,
-/// counter-clockwise; near ties are ordered by their later points.
-fn sort_around(list: &mut [usize], half: &[HalfEdge]) {
+/// Sorts half-edges leaving one node counter-clockwise by the direction from the node
+/// to their first point farther than `reach` (their last point if none is): a first
+/// step shorter than that may double back (a vertex moved by a merge within epsilon
+/// leaves such a spur), which would swap the order of edges and run faces together.
+/// Near ties are ordered by their later points.
+fn sort_around(list: &mut [usize], half: &[HalfEdge], reach: f64) {
     let angle = |h: usize| {
-        let d = half[h].points[1] - half[h].points[0];
+        let points = &half[h].points;
+        let o = points[0];
+        let far = points[1..].iter().find(|p| p.dist(o) > reach);
+        let d = *far.unwrap_or(&points[points.len() - 1]) - o;
         let a = (d.y + 0.0).atan2(d.x);
         let a = if a < 0.0 { a + TAU } else { a };
         if a > TAU - ANGLE_TIE {

@@ -314,7 +314,14 @@ impl<'a> Checker<'a> {
             (vb, gb) = self.eval(b, q);
         }
         let (d, gn) = (va - vb, (ga - gb).norm());
-        let resid = if d != 0.0 { d.abs() / gn } else { 0.0 };
+        // Where both fields measure to the same point (a shared end's wedge, which
+        // either site may name) they coincide: d and its gradient are rounding alone,
+        // and their ratio means nothing.
+        let resid = if d.abs() <= 1e-12 * self.scale {
+            0.0
+        } else {
+            d.abs() / gn
+        };
         let e_tie = far.unwrap_or(q.dist(q0) + resid);
         let e_tie = if e_tie.is_finite() {
             e_tie

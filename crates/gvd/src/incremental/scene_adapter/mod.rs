@@ -531,14 +531,16 @@ impl Generators {
     }
 
     /// Whether an edge between generators `a` and `b` is drawn in `mode`: they have
-    /// different labels (of different sites in `voronoi` mode), and it is not a zone
-    /// boundary between a segment or an arc and one of its ends.
+    /// different labels (of different sites in `voronoi` mode), and in the other modes
+    /// it is not a zone boundary between a segment or an arc and one of its ends. In
+    /// `voronoi` mode such a boundary is drawn when another site names the end (they
+    /// share it): it bounds that site's share of the end's region, where the distances
+    /// to both sites tie, and without it their cells would run together.
     fn shown(&self, a: Gen, b: Gen, mode: Mode) -> bool {
-        let apart = match mode {
+        match mode {
             Mode::Voronoi => self.site(a) != self.site(b),
-            _ => self.label(a, mode) != self.label(b, mode),
-        };
-        apart && !self.is_separator(a, b)
+            _ => self.label(a, mode) != self.label(b, mode) && !self.is_separator(a, b),
+        }
     }
 
     /// The site that names generator `g` (a compact table: this is asked per edge).

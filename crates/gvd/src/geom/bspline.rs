@@ -111,6 +111,31 @@ impl RationalBspline {
         d[p]
     }
 
+    /// `per_span` points along each knot span of the domain (each span's start), then
+    /// the curve's end: a polyline through the curve, for pictures.
+    pub fn sample(&self, per_span: usize) -> Vec<Point> {
+        let (lo, hi) = self.domain();
+        let mut breaks: Vec<f64> = self
+            .knots
+            .iter()
+            .copied()
+            .filter(|&k| k > lo && k < hi)
+            .collect();
+        breaks.dedup();
+        let per_span = per_span.max(1);
+        let mut out = Vec::with_capacity((breaks.len() + 1) * per_span + 1);
+        let mut start = lo;
+        for end in breaks.into_iter().chain([hi]) {
+            out.extend(
+                (0..per_span)
+                    .map(|k| self.eval(start + (end - start) * k as f64 / per_span as f64)),
+            );
+            start = end;
+        }
+        out.push(self.eval(hi));
+        out
+    }
+
     /// The point at `t`.
     pub fn eval(&self, t: f64) -> Point {
         let h = self.homogeneous_at(t);

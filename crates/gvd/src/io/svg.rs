@@ -6,6 +6,7 @@
 
 use crate::complex::VoronoiComplex;
 use crate::geom::bezier::RationalBezier;
+use crate::geom::bspline::RationalBspline;
 use crate::geom::{Aabb, Point};
 use crate::num::poly::Poly;
 use crate::offset::model::{Curve, Offset, Primitive};
@@ -519,10 +520,19 @@ fn write_sites(s: &mut String, scene: &Scene, f: &Fmt, size: f64) {
                 false,
                 "",
             ),
-            SiteKind::Bspline { control_points, .. } => {
-                let dash = format!(" stroke-dasharray=\"{}\"", f.num(0.01 * size));
-                stroke(s, control_points, false, &dash);
-            }
+            SiteKind::Bspline {
+                degree,
+                control_points,
+                knots,
+                weights,
+                ..
+            } => stroke(
+                s,
+                &RationalBspline::new(*degree, control_points, knots, weights.as_deref())
+                    .sample(32),
+                false,
+                "",
+            ),
             SiteKind::Algebraic { equation, clip } => {
                 let window = clip.unwrap_or(scene.domain()).intersection(&scene.domain());
                 if let Some(window) = window {
@@ -641,6 +651,61 @@ mod tests {
             }
         }
         stack.is_empty()
+    }
+
+    /// A B-spline is drawn as its curve, not its control polygon: the drawn path passes
+    /// through points of the curve, and not through its outer control points.
+    #[test]
+    fn a_bspline_is_drawn_as_its_curve() {
+        let p = |x, y| Point::new(x, y);
+        let control = vec![
+            p(-1.0, 0.0),
+            p(-0.5, 0.9),
+            p(0.0, -0.9),
+            p(0.5, 0.9),
+            p(1.0, 0.0),
+        ];
+        let knots = vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
+        let kind = SiteKind::Bspline {
+            degree: 3,
+            control_points: control.clone(),
+            knots: knots.clone(),
+            weights: None,
+            closed: false,
+        };
+        let scene = Scene::new(
+            Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
+            1e-3,
+            Mode::Voronoi,
+            vec![Site { id: None, kind }],
+        )
+        .expect("a valid scene");
+        let svg = render_svg(&scene, &VoronoiComplex::default(), &SvgOptions::default());
+        let sites = &svg[svg.find("<g id=\"sites\"").unwrap()..];
+        let d = &sites[sites.find(" d=\"").unwrap() + 4..];
+        let d = &d[..d.find('"').unwrap()];
+        let numbers: Vec<f64> = d
+            .split(|c: char| c.is_ascii_alphabetic() || c == ' ' || c == ',')
+            .filter(|t| !t.is_empty())
+            .map(|t| t.parse().unwrap())
+            .collect();
+        let drawn: Vec<Point> = numbers.chunks(2).map(|c| p(c[0], -c[1])).collect();
+        assert!(drawn.len() > 50, "{} points", drawn.len());
+        let curve = RationalBspline::new(3, &control, &knots, None);
+        for t in [0.1, 0.37, 0.5, 0.81] {
+            let on = curve.eval(t);
+            let nearest = drawn
+                .iter()
+                .map(|q| q.dist(on))
+                .fold(f64::INFINITY, f64::min);
+            assert!(nearest < 0.05, "C({t}) is {nearest} from the drawing");
+        }
+        for c in &control[1..4] {
+            assert!(
+                drawn.iter().all(|q| q.dist(*c) > 0.1),
+                "control point {c:?} drawn"
+            );
+        }
     }
 
     #[test]

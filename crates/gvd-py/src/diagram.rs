@@ -220,7 +220,7 @@ impl PyDiagram {
     }
 
     /// Every vertex's clearance: its distance to its generators (the field's value for
-    /// sites under other metrics; NaN for Bézier and B-spline generators).
+    /// sites under other metrics).
     #[getter]
     fn clearances<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let scene = self.scene.clone();

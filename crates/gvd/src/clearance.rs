@@ -11,40 +11,42 @@ use crate::site::{DistanceField, SiteField};
 impl VoronoiComplex {
     /// Every vertex's clearance in `scene`: its stored [`crate::complex::Vertex::clearance`]
     /// where set, else the least distance to its generators:
-    /// Euclidean for the geometric kinds, the field's value for the other kinds, NaN
-    /// for Bézier and B-spline curves.
+    /// Euclidean for the geometric kinds, the field's value for the other kinds.
     pub fn clearances(&self, scene: &Scene) -> Vec<f64> {
-        self.vertices
-            .iter()
-            .map(|v| {
-                v.clearance
-                    .unwrap_or_else(|| generators_clearance(scene, &v.sites, v.at))
-            })
-            .collect()
+        with_feet(scene, |feet| {
+            self.vertices
+                .iter()
+                .map(|v| {
+                    v.clearance
+                        .unwrap_or_else(|| feet.generators_clearance(&v.sites, v.at))
+                })
+                .collect()
+        })
     }
 
     /// Stores the clearance of every vertex ([`crate::complex::Vertex::clearance`]) and
     /// of every point of every edge ([`crate::complex::Edge::clearance`]): the least
     /// distance to the generators (which agree within epsilon). Left unset where
-    /// unknown (Bézier and B-spline curves): a vertex's is `None`, an edge with any
-    /// unknown point gets none.
+    /// unknown: a vertex's is `None`, an edge with any unknown point gets none.
     pub fn add_clearances(&mut self, scene: &Scene) {
-        for v in &mut self.vertices {
-            let r = generators_clearance(scene, &v.sites, v.at);
-            v.clearance = r.is_finite().then_some(r);
-        }
-        for e in &mut self.edges {
-            let radii: Vec<f64> = e
-                .points
-                .iter()
-                .map(|&q| generators_clearance(scene, &e.sites, q))
-                .collect();
-            e.clearance = if radii.iter().all(|r| r.is_finite()) {
-                radii
-            } else {
-                Vec::new()
-            };
-        }
+        with_feet(scene, |feet| {
+            for v in &mut self.vertices {
+                let r = feet.generators_clearance(&v.sites, v.at);
+                v.clearance = r.is_finite().then_some(r);
+            }
+            for e in &mut self.edges {
+                let radii: Vec<f64> = e
+                    .points
+                    .iter()
+                    .map(|&q| feet.generators_clearance(&e.sites, q))
+                    .collect();
+                e.clearance = if radii.iter().all(|r| r.is_finite()) {
+                    radii
+                } else {
+                    Vec::new()
+                };
+            }
+        })
     }
 }
 
@@ -69,40 +71,60 @@ impl VoronoiComplex {
     }
 }
 
-/// The least of the distances from `q` to `generators` ([`clearance`]); NaN if any is
-/// unknown or there are none.
-pub(crate) fn generators_clearance(scene: &Scene, generators: &[Generator], q: Point) -> f64 {
-    let mut least = f64::NAN;
-    for g in generators {
-        let r = clearance(scene, g, q);
-        if r.is_nan() {
-            return f64::NAN;
-        }
-        least = if least.is_nan() { r } else { least.min(r) };
-    }
-    least
+/// The feet and clearances of a scene's generators, with what the free-form curves need
+/// built once ([`with_feet`]).
+pub(crate) struct Feet<'a> {
+    scene: &'a Scene,
+    freeform: &'a dyn Fn(&Generator, Point) -> Option<Point>,
 }
 
-/// The distance from `q` to `generator` of `scene`: Euclidean for the geometric kinds
-/// (points, circles as `|q − c| − r`, segments, arcs, polylines, polygons' boundaries,
-/// their corners and edges: `|q − foot|`, see [`foot`]), the site's field value for the
-/// others (point metrics, ellipses, algebraic curves, fields); NaN where neither is
-/// known here (Bézier and B-spline curves).
-pub(crate) fn clearance(scene: &Scene, generator: &Generator, q: Point) -> f64 {
-    let Some(site) = scene.sites().get(generator.site()) else {
-        return f64::NAN;
-    };
-    if let SiteKind::Circle { center, radius } = site.kind {
-        return q.dist(center) - radius;
+/// Runs `work` with the [`Feet`] of `scene`.
+pub(crate) fn with_feet<R>(scene: &Scene, work: impl FnOnce(&Feet) -> R) -> R {
+    crate::freeform::with_feet(scene, |freeform| work(&Feet { scene, freeform }))
+}
+
+impl Feet<'_> {
+    /// The least of the distances from `q` to `generators` ([`Feet::clearance`]); NaN
+    /// if any is unknown or there are none.
+    pub(crate) fn generators_clearance(&self, generators: &[Generator], q: Point) -> f64 {
+        let mut least = f64::NAN;
+        for g in generators {
+            let r = self.clearance(g, q);
+            if r.is_nan() {
+                return f64::NAN;
+            }
+            least = if least.is_nan() { r } else { least.min(r) };
+        }
+        least
     }
-    if let Some(f) = foot(scene, generator, q) {
-        return q.dist(f);
-    }
-    match &site.kind {
-        SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => f64::NAN,
-        kind => SiteField::from_site(generator.site(), kind, &scene.domain())
+
+    /// The distance from `q` to `generator`: Euclidean for the geometric kinds (points,
+    /// circles as `|q − c| − r`, segments, arcs, polylines, polygons' boundaries, Bézier
+    /// and B-spline curves, their corners, edges and pieces: `|q − foot|`, see
+    /// [`Feet::foot`]), the site's field value for the others (point metrics, ellipses,
+    /// algebraic curves, fields); NaN for an index out of range.
+    pub(crate) fn clearance(&self, generator: &Generator, q: Point) -> f64 {
+        let Some(site) = self.scene.sites().get(generator.site()) else {
+            return f64::NAN;
+        };
+        if let SiteKind::Circle { center, radius } = site.kind {
+            return q.dist(center) - radius;
+        }
+        if let Some(f) = self.foot(generator, q) {
+            return q.dist(f);
+        }
+        SiteField::from_site(generator.site(), &site.kind, &self.scene.domain())
             .map(|f| f.value(q))
-            .unwrap_or(f64::NAN),
+            .unwrap_or(f64::NAN)
+    }
+
+    /// The point of `generator` nearest to `q` ([`foot`]; free-form curves, their
+    /// pieces and corners by a certified foot-point search).
+    pub(crate) fn foot(&self, generator: &Generator, q: Point) -> Option<Point> {
+        match self.scene.sites().get(generator.site())?.kind {
+            SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => (self.freeform)(generator, q),
+            _ => foot(self.scene, generator, q),
+        }
     }
 }
 
@@ -112,8 +134,9 @@ pub(crate) fn clearance(scene: &Scene, generator: &Generator, q: Point) -> f64 {
 /// direction, else its nearer end; a circle the radial projection; a whole polyline or
 /// polygon the nearest of its edges' feet (at a circle's or arc's centre, where every
 /// point is nearest, the one at angle 0). `None` for the other kinds (point metrics,
-/// ellipses, algebraic and free-form curves, fields) and for an index out of range.
-pub(crate) fn foot(scene: &Scene, generator: &Generator, q: Point) -> Option<Point> {
+/// ellipses, algebraic curves, fields; free-form curves: [`Feet::foot`]) and for an
+/// index out of range.
+fn foot(scene: &Scene, generator: &Generator, q: Point) -> Option<Point> {
     let site = scene.sites().get(generator.site())?;
     if let Generator::Feature { feature, index, .. } = *generator {
         match feature {

@@ -175,3 +175,141 @@ fn the_picture_colours_the_axis_and_draws_the_discs() {
     assert!(inside > 10);
     assert_eq!(discs.matches("<circle ").count(), inside);
 }
+
+/// The least distance from `q` to the scene's Bézier and B-spline curves.
+fn brute_curve_distance(sc: &Scene, q: Point) -> f64 {
+    sc.sites()
+        .iter()
+        .map(|site| q.dist(brute_curve_foot(&site.kind, q)))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The nearest point to `q` of a Bézier or B-spline curve, by dense sampling (2,000
+/// points per control point) and a golden-section refinement about the best sample:
+/// independent of the engine's certified foot-point search.
+fn brute_curve_foot(kind: &SiteKind, q: Point) -> Point {
+    use gvd::geom::bspline::RationalBspline;
+    let curve = match kind {
+        SiteKind::Bezier {
+            control_points,
+            weights,
+        } => RationalBspline::bezier(control_points, weights.as_deref()),
+        SiteKind::Bspline {
+            degree,
+            control_points,
+            knots,
+            weights,
+            ..
+        } => RationalBspline::new(*degree, control_points, knots, weights.as_deref()),
+        _ => panic!("free-form scenes only"),
+    };
+    let (lo, hi) = curve.domain();
+    let n = 2000 * control_points_of(kind);
+    let step = (hi - lo) / n as f64;
+    let (mut at, mut d) = (lo, f64::INFINITY);
+    for k in 0..=n {
+        let t = lo + step * k as f64;
+        let dk = curve.eval(t).dist(q);
+        if dk < d {
+            (at, d) = (t, dk);
+        }
+    }
+    let (mut a, mut b) = ((at - step).max(lo), (at + step).min(hi));
+    for _ in 0..60 {
+        let (m1, m2) = (a + (b - a) * 0.382, a + (b - a) * 0.618);
+        if curve.eval(m1).dist(q) < curve.eval(m2).dist(q) {
+            b = m2;
+        } else {
+            a = m1;
+        }
+    }
+    let refined = curve.eval(0.5 * (a + b));
+    if refined.dist(q) < d {
+        refined
+    } else {
+        curve.eval(at)
+    }
+}
+
+fn control_points_of(kind: &SiteKind) -> usize {
+    match kind {
+        SiteKind::Bezier { control_points, .. } | SiteKind::Bspline { control_points, .. } => {
+            control_points.len()
+        }
+        _ => 1,
+    }
+}
+
+/// Free-form curves in `medial_axis` and `complex` modes: every vertex's and edge
+/// point's clearance is the distance to the curves, by brute force.
+#[test]
+fn free_form_clearances_are_the_distance_to_the_curves() {
+    for name in [
+        "freeform-bezier4-medial_axis.json",
+        "freeform-deep-concavity-medial_axis.json",
+        "freeform-piecewise-c1-complex.json",
+    ] {
+        let path = format!("{}/tests/data/freeform/{name}", env!("CARGO_MANIFEST_DIR"));
+        let sc = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let eps = sc.epsilon();
+        let d = compute(&sc, &Options::default()).unwrap();
+        let mut checked = 0;
+        for v in &d.vertices {
+            let r = v
+                .clearance
+                .unwrap_or_else(|| panic!("{name}: no vertex clearance"));
+            let want = brute_curve_distance(&sc, v.at);
+            assert!(
+                (r - want).abs() <= eps,
+                "{name}: vertex {:?}: {r} vs {want}",
+                v.at
+            );
+            checked += 1;
+        }
+        for e in &d.edges {
+            assert_eq!(e.clearance.len(), e.points.len(), "{name}");
+            for (&q, &r) in e.points.iter().zip(&e.clearance).step_by(3) {
+                let want = brute_curve_distance(&sc, q);
+                assert!(
+                    (r - want).abs() <= eps,
+                    "{name}: edge point {q:?}: {r} vs {want}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 10, "{name}: only {checked} points");
+    }
+}
+
+/// Pruning a medial axis bounded by four Bézier curves at λ: where a corner branch is
+/// cut, the cut end's two nearest curve points (by brute force) are 2λ apart.
+#[test]
+fn pruning_a_free_form_medial_axis_cuts_at_two_lambda() {
+    let path = format!(
+        "{}/tests/data/freeform/freeform-bezier4-medial_axis.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let sc = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let lambda = 0.2;
+    let options = Options {
+        prune: gvd::Pruning {
+            lambda: Some(lambda),
+            object_angle: None,
+        },
+        ..Default::default()
+    };
+    let d = compute(&sc, &options).unwrap();
+    d.check_invariants().unwrap();
+    assert_eq!(d.stats["pruning"]["cut_ends"], 4);
+    let cut_ends: Vec<_> = d.vertices.iter().filter(|v| v.sites.len() == 2).collect();
+    assert_eq!(cut_ends.len(), 4);
+    for v in cut_ends {
+        let [f1, f2] = [0, 1].map(|k| brute_curve_foot(&sc.sites()[v.sites[k].site()].kind, v.at));
+        let gap = f1.dist(f2);
+        assert!(
+            gap >= 2.0 * lambda - 1e-6 && gap <= 2.0 * lambda + sc.epsilon(),
+            "cut at {:?}: feet {gap} apart",
+            v.at
+        );
+    }
+}

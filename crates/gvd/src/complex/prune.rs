@@ -15,7 +15,7 @@
 //! generators change where the vertex was ([`Edge::sites_along`]).
 
 use super::{Edge, Generator, SitesChange, Vertex, VoronoiComplex};
-use crate::clearance::{foot, generators_clearance};
+use crate::clearance::{with_feet, Feet};
 use crate::error::Error;
 use crate::geom::Point;
 use crate::scene::{Mode, Scene};
@@ -96,7 +96,7 @@ struct Run {
 /// Prunes `complex` (computed from `scene`) by `pruning`, in place; see the module
 /// notes. Clearances, where the edges carry them, are computed for the new points.
 /// Refuses generators whose nearest points are not known here (point metrics other than
-/// Euclidean, ellipses, fields, algebraic and free-form curves), naming the site, and
+/// Euclidean, ellipses, fields, algebraic curves), naming the site, and
 /// edges with exact bisector pieces, which it would not cut.
 pub fn prune(
     complex: &mut VoronoiComplex,
@@ -104,7 +104,17 @@ pub fn prune(
     pruning: &Pruning,
 ) -> Result<PruneCounts, Error> {
     pruning.check()?;
-    check_feet_known(complex, scene)?;
+    with_feet(scene, |feet| prune_with(complex, scene, feet, pruning))
+}
+
+/// [`prune`] with the feet of `scene`'s generators.
+fn prune_with(
+    complex: &mut VoronoiComplex,
+    scene: &Scene,
+    feet: &Feet,
+    pruning: &Pruning,
+) -> Result<PruneCounts, Error> {
+    check_feet_known(complex, scene, feet)?;
     if complex.edges.iter().any(|e| !e.bisector.is_empty()) {
         return Err(Error::InvalidOption {
             option: "prune".into(),
@@ -119,7 +129,7 @@ pub fn prune(
     let mut cut_ends = 0;
     for e in std::mem::take(&mut complex.edges) {
         let passes = |q: Point| {
-            let f = e.sites.map(|g| foot(scene, &g, q).unwrap_or(q));
+            let f = e.sites.map(|g| feet.foot(&g, q).unwrap_or(q));
             pruning.keeps(q, f[0], f[1])
         };
         for run in passing_runs(&e, &passes, tolerance) {
@@ -131,7 +141,7 @@ pub fn prune(
                 vertices.push(Vertex {
                     at,
                     sites: e.sites.iter().copied().collect(),
-                    clearance: Some(generators_clearance(scene, &e.sites, at))
+                    clearance: Some(feet.generators_clearance(&e.sites, at))
                         .filter(|r| with_clearance && r.is_finite()),
                 });
                 Some(vertices.len() - 1)
@@ -147,7 +157,7 @@ pub fn prune(
             } else {
                 run.points
                     .iter()
-                    .map(|&q| generators_clearance(scene, &e.sites, q))
+                    .map(|&q| feet.generators_clearance(&e.sites, q))
                     .collect()
             };
             edges.push(Edge {
@@ -173,11 +183,11 @@ pub fn prune(
     })
 }
 
-/// Refuses a generator that [`foot`] does not know, naming its site.
-fn check_feet_known(complex: &VoronoiComplex, scene: &Scene) -> Result<(), Error> {
+/// Refuses a generator whose feet are not known, naming its site.
+fn check_feet_known(complex: &VoronoiComplex, scene: &Scene, feet: &Feet) -> Result<(), Error> {
     for e in &complex.edges {
         let Some(&q) = e.points.first() else { continue };
-        if let Some(g) = e.sites.iter().find(|g| foot(scene, g, q).is_none()) {
+        if let Some(g) = e.sites.iter().find(|g| feet.foot(g, q).is_none()) {
             let site = g.site();
             let kind = scene
                 .sites()
@@ -188,7 +198,8 @@ fn check_feet_known(complex: &VoronoiComplex, scene: &Scene) -> Result<(), Error
                 site,
                 kind,
                 message: "pruning needs each generator's nearest points, known here for \
-                          Euclidean points, circles, segments, arcs, polylines and polygons"
+                          Euclidean points, circles, segments, arcs, polylines, polygons, \
+                          Bézier and B-spline curves"
                     .into(),
             });
         }

@@ -18,6 +18,7 @@
 mod assemble;
 mod bisector;
 mod candidates;
+mod feet;
 mod nearest;
 mod pieces;
 mod trace;
@@ -29,6 +30,7 @@ use crate::control::Watch;
 use crate::error::Error;
 use crate::geom::Point;
 use crate::scene::{Scene, SiteKind};
+pub(crate) use feet::with_feet;
 use nearest::Features;
 use pieces::Feature;
 use trim::{Constraints, Eval, Run, Trimmer};

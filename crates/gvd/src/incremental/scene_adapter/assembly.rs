@@ -290,6 +290,16 @@ fn merge_raw(
         diagram.polyline(e.half, tol, &mut points);
         points.windows(2).map(|w| w[0].dist(w[1])).sum()
     };
+    // In voronoi mode a segment's zone boundary at an end that another site names is
+    // drawn; where it has no length but rounding's (about 1e-12 at a fan of segments
+    // from one point) its ends are one vertex.
+    if mode == Mode::Voronoi {
+        for e in raw_edges.iter_mut() {
+            if !e.zero && g.is_separator(e.gens[0], e.gens[1]) && length(e) <= tip_tol {
+                e.zero = true;
+            }
+        }
+    }
     let tips = joints::collapse(&joints, tip_tol, &mut raw_vertices, &mut raw_edges, length);
     // Vertices joined by zero-length edges are one vertex, and so are the vertices
     // of a tangent joint's tip.

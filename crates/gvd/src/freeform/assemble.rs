@@ -2,7 +2,11 @@
 //! tolerance) are clustered; a cluster where three or more generators meet is a Voronoi
 //! vertex, a cluster of two runs of the same two generators is an inner joint (where a
 //! foot moves from one span to the next, or a slab side), and the runs are chained
-//! through the joints into edges.
+//! through the joints into edges. A run end of two generators that meets nothing
+//! within the tolerance, nor the boundary, joins the nearest cluster within the chord
+//! tolerance: the two parameterizations of one edge (a joint's normal, a branch of
+//! `F3`), or the several runs that locate one degenerate vertex, meet only up to the
+//! slivers next to a singular corner of `F3` that neither traces.
 
 use super::pieces::Pieces;
 use super::trim::{End, Run};
@@ -10,9 +14,10 @@ use crate::complex::{Edge, Generator, SmallVec, Vertex, VoronoiComplex};
 use crate::geom::Point;
 use std::collections::HashMap;
 
-/// The complex of the runs; also returns the number of loose run ends (ends that
-/// meet nothing and are not on the boundary).
-pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usize) {
+/// The complex of the runs, their ends clustered within `tol` (lone ends within
+/// `snap`); also returns the number of loose run ends (ends that meet nothing and are
+/// not on the boundary).
+pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiComplex, usize) {
     let gens = |r: &Run| {
         let mut g = [pieces.generator(r.pair[0]), pieces.generator(r.pair[1])];
         g.sort();
@@ -50,6 +55,25 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64) -> (VoronoiComplex, usi
         cluster_of[i] = c;
         clusters[c].push(i);
         grid.entry((cx, cy)).or_default().push(i);
+    }
+    for c in 0..clusters.len() {
+        let [i] = clusters[c][..] else { continue };
+        let (p, k, which) = ends[i];
+        // (a ridge, one generator with itself, ends alone at a centre of curvature)
+        let g = gens(&runs[k]);
+        if runs[k].ends[which] == End::Boundary || g[0] == g[1] {
+            continue;
+        }
+        let nearest = (0..ends.len())
+            .filter(|&j| cluster_of[j] != c && ends[j].1 != k)
+            .map(|j| (ends[j].0.dist(p), cluster_of[j]))
+            .filter(|&(d, _)| d <= snap)
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((_, to)) = nearest {
+            clusters[c].clear();
+            clusters[to].push(i);
+            cluster_of[i] = to;
+        }
     }
     // a cluster's generators and whether it is a vertex
     let mut complex = VoronoiComplex::default();

@@ -7,7 +7,7 @@
 //! `ℓ(q, a) ≤ min_k u(q, k) + 2ρ`. Every pair on the diagram is found.
 
 use super::nearest::Features;
-use super::pieces::Feature;
+use super::pieces::{Feature, JOIN};
 use crate::geom::{Aabb, Point};
 use std::collections::BTreeSet;
 
@@ -17,7 +17,8 @@ const GRID: usize = 96;
 const SAMPLES: usize = 32;
 
 /// The candidate pairs (each once, first < second), excluding pairs that never bound an
-/// edge: two features of one site in `voronoi` mode, a corner and its own spans.
+/// edge: two features of one site in `voronoi` mode, a corner and the spans that end at
+/// it.
 pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
     let pieces = features.pieces;
     // (feature, samples, half the longest step)
@@ -42,6 +43,7 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
     }
     let (dx, dy) = (domain.width() / GRID as f64, domain.height() / GRID as f64);
     let rho = 0.5 * dx.hypot(dy);
+    let join = JOIN * domain.longest_side();
     let dist =
         |q: Point, pts: &[Point]| pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min);
     let mut out: BTreeSet<[Feature; 2]> = BTreeSet::new();
@@ -68,7 +70,7 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
             for x in 0..near.len() {
                 for y in x + 1..near.len() {
                     let (f, g) = (sampled[near[x]].0, sampled[near[y]].0);
-                    if keep(features, f, g) {
+                    if keep(features, f, g, join) {
                         out.insert(if f < g { [f, g] } else { [g, f] });
                     }
                 }
@@ -78,20 +80,21 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
     out.into_iter().collect()
 }
 
-fn keep(features: &Features, f: Feature, g: Feature) -> bool {
+fn keep(features: &Features, f: Feature, g: Feature, join: f64) -> bool {
     let pieces = features.pieces;
     let (sf, sg) = (pieces.site(f), pieces.site(g));
     if !pieces.featured {
         return sf != sg;
     }
-    // a corner and the spans that end at it meet only at the corner
+    // a corner and the spans that end at it (its own, or those of a site joined there)
+    // meet only at the corner
     let touches = |c: usize, s: usize| {
         let (c, s) = (&pieces.corners[c], &pieces.spans[s].curve);
-        c.at == s.eval(0.0) || c.at == s.eval(1.0)
+        c.at.dist(s.eval(0.0)) <= join || c.at.dist(s.eval(1.0)) <= join
     };
     match (f, g) {
         (Feature::Corner(c), Feature::Span(s)) | (Feature::Span(s), Feature::Corner(c)) => {
-            !(sf == sg && touches(c, s))
+            !touches(c, s)
         }
         _ => true,
     }

@@ -6,7 +6,8 @@
 //! grid test, [`candidates`]) gets its bisector: for two spans the zero set of
 //! `F3(t, r)` ([`bisector`]) split into monotone branches ([`trace`]), for a corner and
 //! a span the rational point/curve bisector `B(t)` (eq. 29), for two corners their
-//! perpendicular bisector; each branch is trimmed by the orientation and curvature
+//! perpendicular bisector, for two spans of joined sites meeting without a corner their
+//! common normal at the joint; each branch is trimmed by the orientation and curvature
 //! constraints and the lower envelope ([`trim`]); the runs are assembled into the
 //! complex ([`assemble`]). Distances to the features are certified univariate root
 //! isolations ([`nearest`]).
@@ -42,6 +43,11 @@ pub fn supports(scene: &Scene) -> bool {
             .sites()
             .iter()
             .all(|s| matches!(s.kind, SiteKind::Bezier { .. } | SiteKind::Bspline { .. }))
+}
+
+/// The chord tolerance of the output polylines: a quarter of the scene's epsilon.
+fn chord(scene: &Scene) -> f64 {
+    0.25 * scene.epsilon()
 }
 
 /// Most samples evaluated over all bisector branches of one scene.
@@ -90,7 +96,7 @@ pub fn compute_with(
     let trimmer = Trimmer {
         features: &features,
         domain,
-        chord: 0.25 * scene.epsilon(),
+        chord: chord(scene),
         step: scale / 64.0,
         tol: 1e-9 * scale,
         constraints,
@@ -131,7 +137,7 @@ pub fn compute_with(
                             feet: [Some(t), Some(r)],
                         })
                     };
-                    runs.extend(trimmer.trim([f, g], &eval, br.slab.0, br.slab.1, 8));
+                    runs.extend(trimmer.trim([f, g], &eval, br.slab, 8, 1.0));
                 }
             }
             (Feature::Corner(c), Feature::Span(b)) | (Feature::Span(b), Feature::Corner(c)) => {
@@ -149,9 +155,9 @@ pub fn compute_with(
                 runs.extend(trimmer.trim(
                     [Feature::Corner(c), Feature::Span(b)],
                     &eval,
-                    0.0,
-                    1.0,
+                    (0.0, 1.0),
                     32,
+                    1.0,
                 ));
             }
             (Feature::Corner(c0), Feature::Corner(c1)) => {
@@ -170,9 +176,29 @@ pub fn compute_with(
                         feet: [None, None],
                     })
                 };
-                runs.extend(trimmer.trim([f, g], &eval, s0, s1, 16));
+                runs.extend(trimmer.trim([f, g], &eval, (s0, s1), 16, s1 - s0));
             }
         }
+    }
+    // the edges along the common normals of joints without a corner
+    for j in &pieces.joints {
+        let Some((s0, s1)) = domain.line_range(j.at, j.normal) else {
+            continue;
+        };
+        let s0 = if j.both { s0 } else { s0.max(0.0) };
+        if s1 <= s0 {
+            continue;
+        }
+        branches += 1;
+        let eval = |s: f64| -> Option<Eval> {
+            Some(Eval {
+                p: j.at + j.normal * s,
+                d: s.abs(),
+                feet: j.feet.map(Some),
+            })
+        };
+        let pair = j.spans.map(Feature::Span);
+        runs.extend(trimmer.trim(pair, &eval, (s0, s1), 16, s1 - s0));
     }
     watch.check()?;
     if trimmer.samples.get() >= MAX_SAMPLES {
@@ -184,7 +210,7 @@ pub fn compute_with(
             ),
         });
     }
-    let (mut complex, loose) = assemble::assemble(&pieces, &runs, 1e-7 * scale);
+    let (mut complex, loose) = assemble::assemble(&pieces, &runs, 1e-7 * scale, trimmer.chord);
     if !pieces.featured {
         complex.cells = cells::build_cells(&complex, &domain, &|q: Point| {
             features.nearest(q).map_or(0, |(f, _)| pieces.site(f))

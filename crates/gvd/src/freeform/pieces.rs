@@ -2,7 +2,9 @@
 //! into Bézier spans by knot insertion (Boehm's algorithm on homogeneous control points,
 //! every knot of the curve's range raised to multiplicity `degree`, Farin02 ch. 10); the
 //! spans are grouped into C1 pieces, split where the tangent direction jumps (corners).
-//! Open curves get a corner at each end.
+//! Open curves get a corner at each end, except where (in `complex` and `medial_axis`
+//! modes) two open sites join end to end: one corner where the tangent turns, or a
+//! [`Joint`] where it does not; chains of joined sites that close up bound a region.
 
 use crate::complex::{FeatureKind, Generator};
 use crate::geom::bezier::RationalBezier;
@@ -100,6 +102,27 @@ pub struct Pieces {
     pub corners: Vec<Corner>,
     /// Whether generators are features (`complex`, `medial_axis`) or whole sites.
     pub featured: bool,
+    /// Where spans of two joined sites meet without a corner.
+    pub joints: Vec<Joint>,
+}
+
+/// Two spans of different sites that meet end to end where the tangent turns by less
+/// than the output resolves (no corner): near the common point `p` the edge of the two
+/// lies along their common normal `p + s·n`, where both feet stay at `p` — a segment
+/// in the plane that `F3` sees only as a corner `(t, r)` of its square.
+#[derive(Clone, Copy, Debug)]
+pub struct Joint {
+    /// The common end point.
+    pub at: Point,
+    /// The two spans.
+    pub spans: [usize; 2],
+    /// Their parameters at `at` (0 or 1).
+    pub feet: [f64; 2],
+    /// The unit normal (the mean of the two) pointing to the side where the diagram
+    /// lies; either way when `both`.
+    pub normal: Point,
+    /// The diagram lies on both sides (open chains).
+    pub both: bool,
 }
 
 impl Pieces {
@@ -239,36 +262,199 @@ fn unit(v: Point) -> Point {
     }
 }
 
+/// Ends of two open sites closer than this (relative to the domain's size) are joined.
+pub const JOIN: f64 = 1e-12;
+
+/// An end of an open site (`end` 0: its start, 1: its end) joined to an end of another.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    /// The other site.
+    site: usize,
+    /// Its end there.
+    end: usize,
+}
+
+/// A site's spans: whether it is closed, its end points and unit end tangents.
+struct SiteSpans {
+    spans: Vec<RationalBezier>,
+    closed: bool,
+    at: [Point; 2],
+    tangent: [Point; 2],
+}
+
+/// The links of open sites that meet end to end (each end meets exactly one end of
+/// another site within `tol`): per site, at its start and its end.
+fn links(sites: &[Option<SiteSpans>], tol: f64) -> Vec<[Option<Link>; 2]> {
+    let ends: Vec<(usize, usize, Point)> = sites
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| s.as_ref().filter(|s| !s.closed).map(|s| (i, s)))
+        .flat_map(|(i, s)| [(i, 0, s.at[0]), (i, 1, s.at[1])])
+        .collect();
+    let mut out = vec![[None, None]; sites.len()];
+    for &(i, end, p) in &ends {
+        let mut meets = ends
+            .iter()
+            .filter(|&&(j, e, q)| (j, e) != (i, end) && q.dist(p) <= tol);
+        if let (Some(&(j, e, _)), None) = (meets.next(), meets.next()) {
+            if j != i {
+                out[i][end] = Some(Link { site: j, end: e });
+            }
+        }
+    }
+    out
+}
+
+/// The side of each site where the diagram lies: outside a closed curve (inside in
+/// `medial_axis` mode), or outside/inside the loop that a chain of joined open sites
+/// closes, on the side of each site's own direction; `Both` for the rest.
+fn sides(sites: &[Option<SiteSpans>], links: &[[Option<Link>; 2]], mode: Mode) -> Vec<Side> {
+    let want_inside = mode == Mode::MedialAxis;
+    // the side of a loop that runs along `ring`
+    let side_of = |ring: &[Point]| {
+        if (signed_area(ring) > 0.0) == want_inside {
+            Side::Left
+        } else {
+            Side::Right
+        }
+    };
+    let ring_of = |s: &SiteSpans, reversed: bool| {
+        let mut v: Vec<Point> = s
+            .spans
+            .iter()
+            .flat_map(|c| {
+                let mut v = c.sample(16);
+                v.pop();
+                v
+            })
+            .collect();
+        if reversed {
+            v.reverse();
+        }
+        v
+    };
+    let mut out = vec![Side::Both; sites.len()];
+    let mut seen = vec![false; sites.len()];
+    for (i, s) in sites.iter().enumerate() {
+        let Some(s) = s else { continue };
+        if s.closed {
+            out[i] = side_of(&ring_of(s, false));
+            continue;
+        }
+        if seen[i] {
+            continue;
+        }
+        // walk the chain from site i in its direction: (site, reversed)
+        let mut chain = vec![(i, false)];
+        let mut closed = false;
+        while let Some(j) = {
+            let &(k, reversed) = chain.last().unwrap();
+            links[k][usize::from(!reversed)]
+        } {
+            if j.site == i {
+                closed = true;
+                break;
+            }
+            if chain.len() > sites.len() {
+                break;
+            }
+            // entered at its start: along its direction
+            chain.push((j.site, j.end == 1));
+        }
+        for &(k, _) in &chain {
+            seen[k] = true;
+        }
+        if closed {
+            let ring: Vec<Point> = chain
+                .iter()
+                .flat_map(|&(k, reversed)| ring_of(sites[k].as_ref().unwrap(), reversed))
+                .collect();
+            let side = side_of(&ring);
+            for &(k, reversed) in &chain {
+                out[k] = match (side, reversed) {
+                    (Side::Left, true) => Side::Right,
+                    (Side::Right, true) => Side::Left,
+                    (side, _) => side,
+                };
+            }
+        }
+    }
+    out
+}
+
+/// True when the unit tangents `a` (arriving) and `b` (leaving) turn by more than
+/// `angle` (or one is missing).
+fn turns(a: Point, b: Point, angle: f64) -> bool {
+    a.dot(b) < angle.cos() || a.norm() == 0.0 || b.norm() == 0.0
+}
+
 /// Cuts every free-form site of the scene into spans and corners. Sites that are not
-/// free-form curves are skipped (the caller refuses them).
+/// free-form curves are skipped (the caller refuses them). In `complex` and
+/// `medial_axis` modes, open sites joined end to end are one curve: a joint is a corner
+/// (one, with the two sites' tangents) only where the tangent turns, and a chain that
+/// closes up bounds a region like a closed curve.
 pub fn pieces(scene: &Scene) -> Pieces {
     let mode = scene.mode();
     let mut out = Pieces {
         featured: mode != Mode::Voronoi,
         ..Pieces::default()
     };
-    for (site, s) in scene.sites().iter().enumerate() {
-        let Some((spans, closed)) = site_spans(&s.kind) else {
-            continue;
-        };
-        let scale = spans
-            .iter()
-            .map(|c| c.control_box().longest_side())
-            .fold(0.0, f64::max);
-        let spans: Vec<RationalBezier> = spans
-            .into_iter()
-            .filter(|c| c.control_box().longest_side() > 1e-12 * scale)
-            .collect();
-        if spans.is_empty() {
-            continue;
-        }
-        // in complex and medial_axis modes a curve meets itself: cut the spans at their
-        // curvature extrema, so that no span has a bisector with itself
-        let spans = if mode == Mode::Voronoi {
-            spans
+    let sites: Vec<Option<SiteSpans>> = scene
+        .sites()
+        .iter()
+        .map(|s| {
+            let (spans, closed) = site_spans(&s.kind)?;
+            let scale = spans
+                .iter()
+                .map(|c| c.control_box().longest_side())
+                .fold(0.0, f64::max);
+            let spans: Vec<RationalBezier> = spans
+                .into_iter()
+                .filter(|c| c.control_box().longest_side() > 1e-12 * scale)
+                .collect();
+            // in complex and medial_axis modes a curve meets itself: cut the spans at
+            // their curvature extrema, so that no span has a bisector with itself
+            let spans: Vec<RationalBezier> = if mode == Mode::Voronoi {
+                spans
+            } else {
+                spans.iter().flat_map(split_at_vertices).collect()
+            };
+            let (first, last) = (spans.first()?, spans.last()?);
+            Some(SiteSpans {
+                at: [first.eval(0.0), last.eval(1.0)],
+                tangent: [unit(first.end_tangents().0), unit(last.end_tangents().1)],
+                spans,
+                closed,
+            })
+        })
+        .collect();
+    let links = if out.featured {
+        links(&sites, JOIN * scene.domain().longest_side())
+    } else {
+        vec![[None, None]; sites.len()]
+    };
+    let sides = sides(&sites, &links, mode);
+    // a turn at a joint below `2 chord / diagonal` moves the edge along the mean normal
+    // by less than `chord` anywhere in the domain: no corner there
+    let diagonal = scene.domain().width().hypot(scene.domain().height());
+    let joint_turn = (2.0 * super::chord(scene) / diagonal).max(CORNER_ANGLE);
+    // a site's tangent at end `end` of site `l.site`, in the direction of a site whose
+    // end `end` is linked there (reversed when both ends are starts, or both ends)
+    let linked_tangent = |l: Link, end: usize| {
+        let t = sites[l.site].as_ref().unwrap().tangent[l.end];
+        if l.end == end {
+            t * -1.0
         } else {
-            spans.iter().flat_map(split_at_vertices).collect()
+            t
+        }
+    };
+    // per site: the indices of its first and last spans in `out.spans`
+    let mut end_spans: Vec<[usize; 2]> = vec![[0, 0]; sites.len()];
+    for (site, s) in sites.iter().enumerate() {
+        let Some(SiteSpans { spans, closed, .. }) = s else {
+            continue;
         };
+        let (closed, side) = (*closed, sides[site]);
         let tangents: Vec<(Point, Point)> = spans
             .iter()
             .map(|c| {
@@ -276,36 +462,41 @@ pub fn pieces(scene: &Scene) -> Pieces {
                 (unit(a), unit(b))
             })
             .collect();
-        let jump = |a: Point, b: Point| {
-            a.dot(b) < (CORNER_ANGLE).cos() || a.norm() == 0.0 || b.norm() == 0.0
-        };
         let m = spans.len();
         // breaks[k]: a corner at the start of span k
         let mut breaks: Vec<bool> = (0..m)
-            .map(|k| k > 0 && jump(tangents[k - 1].1, tangents[k].0))
+            .map(|k| k > 0 && turns(tangents[k - 1].1, tangents[k].0, CORNER_ANGLE))
             .collect();
-        let seam = closed && jump(tangents[m - 1].1, tangents[0].0);
+        let seam = closed && turns(tangents[m - 1].1, tangents[0].0, CORNER_ANGLE);
         breaks[0] = !closed || seam;
-        // the side where the diagram lies: outside a closed curve (inside in medial_axis)
-        let side = if closed {
-            let ring: Vec<Point> = spans
-                .iter()
-                .flat_map(|c| {
-                    let mut v = c.sample(16);
-                    v.pop();
-                    v
-                })
-                .collect();
-            let ccw = signed_area(&ring) > 0.0;
-            let inside_left = ccw;
-            let want_inside = mode == Mode::MedialAxis;
-            if inside_left == want_inside {
-                Side::Left
+        // the corner at an open end (0: start, 1: end): free, or where the site joins
+        // another (made by the lower site, in this site's direction: the other's
+        // tangent is reversed when its end of the same kind meets this one)
+        let open_end = |end: usize, index: usize| -> Option<Corner> {
+            let zero = Point::new(0.0, 0.0);
+            let own = if end == 0 {
+                tangents[0].0
             } else {
-                Side::Right
-            }
-        } else {
-            Side::Both
+                tangents[m - 1].1
+            };
+            let other = match links[site][end] {
+                None => zero,
+                Some(l) if l.site < site => return None,
+                Some(l) => {
+                    let t = linked_tangent(l, end);
+                    if !turns(own, t, joint_turn) {
+                        return None;
+                    }
+                    t
+                }
+            };
+            let (tin, tout) = if end == 0 { (other, own) } else { (own, other) };
+            let at = if end == 0 {
+                spans[0].eval(0.0)
+            } else {
+                spans[m - 1].eval(1.0)
+            };
+            Some(make_corner(at, site, index, tin, tout, side))
         };
         // pieces and corners, numbered like the format: from the seam when it is a
         // corner (or the curve is open), else from the first break
@@ -316,24 +507,22 @@ pub fn pieces(scene: &Scene) -> Pieces {
         };
         let mut piece = 0usize;
         let mut corner = 0usize;
+        end_spans[site] = [out.spans.len(), out.spans.len() + m - 1];
         for j in 0..m {
             let k = (first + j) % m;
             if j > 0 && breaks[k] {
                 piece += 1;
             }
-            if breaks[k] {
-                let tin = if !closed && k == 0 {
-                    Point::new(0.0, 0.0)
-                } else {
-                    tangents[(k + m - 1) % m].1
-                };
-                let tout = tangents[k].0;
+            if k == 0 && !closed {
+                out.corners.extend(open_end(0, corner));
+                corner += 1;
+            } else if breaks[k] {
                 out.corners.push(make_corner(
                     spans[k].eval(0.0),
                     site,
                     corner,
-                    tin,
-                    tout,
+                    tangents[(k + m - 1) % m].1,
+                    tangents[k].0,
                     side,
                 ));
                 corner += 1;
@@ -347,15 +536,25 @@ pub fn pieces(scene: &Scene) -> Pieces {
             });
         }
         if !closed {
-            let end = spans[m - 1].eval(1.0);
-            out.corners.push(make_corner(
-                end,
-                site,
-                corner,
-                tangents[m - 1].1,
-                Point::new(0.0, 0.0),
-                side,
-            ));
+            out.corners.extend(open_end(1, corner));
+        }
+    }
+    for (i, ends) in links.iter().enumerate() {
+        for (end, l) in ends.iter().enumerate() {
+            let Some(l) = *l else { continue };
+            let own = sites[i].as_ref().unwrap();
+            let other = linked_tangent(l, end);
+            if l.site < i || turns(own.tangent[end], other, joint_turn) {
+                continue;
+            }
+            let n = unit(own.tangent[end] + other).perp();
+            out.joints.push(Joint {
+                at: own.at[end],
+                spans: [end_spans[i][end], end_spans[l.site][l.end]],
+                feet: [end as f64, l.end as f64],
+                normal: if sides[i] == Side::Right { n * -1.0 } else { n },
+                both: sides[i] == Side::Both,
+            });
         }
     }
     out

@@ -75,8 +75,10 @@ pub struct TraceStats {
     pub uncertified: usize,
 }
 
-/// Side of the box left out around a shared end of two spans.
-const CORNER_BOX: f64 = 1e-3;
+/// Half the side of the box left out around a shared end of two spans: a power of two,
+/// so that the domains left are halved exactly in f64 (the 2-D solver then splits its
+/// Bernstein forms instead of converting them again).
+const CORNER_BOX: f64 = 1.0 / 1024.0;
 
 /// `b` minus the box `e`, as up to four boxes.
 fn subtract(b: &Aabb, e: &Aabb) -> Vec<Aabb> {

@@ -164,17 +164,22 @@ impl Trimmer<'_> {
     }
 
     /// Samples strictly between `a` and `b` (in order), refined until valid stretches
-    /// are within the chord tolerance and status changes are located.
+    /// are within the chord tolerance and status changes are located. `coarse` is the
+    /// coarse step of the whole bisector: invalid stretches are searched for valid ones
+    /// down to a fixed fraction of it (halvings below a coarse step, not below the
+    /// range given, which may be a thin slab by a singular point).
     fn refine(
         &self,
         pair: [Feature; 2],
         eval: &dyn Fn(f64) -> Option<Eval>,
         a: Sample,
         b: Sample,
-        depth: usize,
+        coarse: f64,
         out: &mut Vec<Sample>,
     ) {
-        if depth > 48 || self.exhausted() || b.s - a.s <= 1e-15 * (1.0 + a.s.abs()) {
+        // wider than `k` halvings of the coarse step
+        let wider = |k: i32| b.s - a.s > 1.5 * coarse * 0.5f64.powi(k);
+        if !wider(48) || self.exhausted() || b.s - a.s <= 1e-15 * (1.0 + a.s.abs()) {
             return;
         }
         let (pa, pb) = (a.e.map(|e| e.p), b.e.map(|e| e.p));
@@ -195,9 +200,9 @@ impl Trimmer<'_> {
                             || (len > self.chord && !(0.2..=0.8).contains(&share))
                     });
                     if far || m.status != Status::Valid {
-                        self.refine(pair, eval, a, m, depth + 1, out);
+                        self.refine(pair, eval, a, m, coarse, out);
                         out.push(m);
-                        self.refine(pair, eval, m, b, depth + 1, out);
+                        self.refine(pair, eval, m, b, coarse, out);
                     }
                     return;
                 }
@@ -216,30 +221,33 @@ impl Trimmer<'_> {
                 match (pa, pb) {
                     (Some(x), Some(y)) => {
                         let near = |p: Point| self.domain.outside_distance(p) < self.step;
-                        (near(x) || near(y)) && x.dist(y) > self.step && depth < 24
+                        (near(x) || near(y)) && x.dist(y) > self.step && wider(24)
                     }
-                    _ => depth < 12,
+                    _ => wider(12),
                 }
             }
         };
         if split {
             let m = self.sample(pair, eval, 0.5 * (a.s + b.s));
-            self.refine(pair, eval, a, m, depth + 1, out);
+            self.refine(pair, eval, a, m, coarse, out);
             out.push(m);
-            self.refine(pair, eval, m, b, depth + 1, out);
+            self.refine(pair, eval, m, b, coarse, out);
         }
     }
 
-    /// The runs of the branch `s ↦ eval(s)`, `s ∈ [s0, s1]`, on the Voronoi diagram.
+    /// The runs of the branch `s ↦ eval(s)`, `s ∈ [s0, s1]`, on the Voronoi diagram,
+    /// from `initial` coarse samples; `whole` is the parameter length of the whole
+    /// bisector the range is part of (`s1 − s0`, or `1` for a slab of a span's `t`).
     pub fn trim(
         &self,
         pair: [Feature; 2],
         eval: &dyn Fn(f64) -> Option<Eval>,
-        s0: f64,
-        s1: f64,
+        (s0, s1): (f64, f64),
         initial: usize,
+        whole: f64,
     ) -> Vec<Run> {
         let n = initial.max(2);
+        let coarse_step = whole / n as f64;
         let coarse: Vec<Sample> = (0..=n)
             .map(|k| {
                 let s = if k == n {
@@ -252,7 +260,7 @@ impl Trimmer<'_> {
             .collect();
         let mut all = vec![coarse[0]];
         for w in coarse.windows(2) {
-            self.refine(pair, eval, w[0], w[1], 0, &mut all);
+            self.refine(pair, eval, w[0], w[1], coarse_step, &mut all);
             all.push(w[1]);
         }
         let mut runs = Vec::new();

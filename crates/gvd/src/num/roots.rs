@@ -325,7 +325,9 @@ struct SystemBox {
 ///
 /// Subdivision in halves along the longer side. A box is **excluded** when the
 /// Bernstein range of one polynomial over it excludes 0 (convex-hull property; the forms
-/// are computed over each box from `Poly`, so they are exact for the f64 box). A box is
+/// are computed over the domain from `Poly`, and a box's halves get them by de Casteljau
+/// at `1/2` when its midpoint is exact in f64, else from `Poly` again, so they always
+/// stand for the f64 box, with rounding in their error bounds). A box is
 /// **certified** by the Krawczyk operator
 /// `K(X) = m − Y·F(m) + (I − Y·J(X))·(X − m)` with `m` the centre, `J(X)` an interval
 /// Jacobian (Bernstein ranges of the partial derivatives) and `Y ≈ J(m)⁻¹`:
@@ -366,7 +368,12 @@ pub fn solve_system(
             unresolved.push(sb.b);
             continue;
         }
-        match krawczyk(system, &jacobian, &inflate(&sb.b, 0.25)) {
+        let outcome = if may_contract(&sb) {
+            krawczyk(system, &jacobian, &inflate(&sb.b, 0.25))
+        } else {
+            Krawczyk::Unknown
+        };
+        match outcome {
             Krawczyk::Unique { region, enclosure } => {
                 let enclosure = contract(system, &jacobian, enclosure);
                 let excluded = polys[2..]
@@ -385,22 +392,29 @@ pub fn solve_system(
             unresolved.push(sb.b);
             continue;
         }
-        let (axis, at) = if sb.b.width() >= sb.b.height() {
-            (Axis::X, sb.b.center().x)
+        let axis = if sb.b.width() >= sb.b.height() {
+            Axis::X
         } else {
-            (Axis::Y, sb.b.center().y)
+            Axis::Y
         };
-        let (lo, hi) = sb.b.split(axis, at);
         let ends = match axis {
             Axis::X => (sb.b.min.x, sb.b.max.x),
             Axis::Y => (sb.b.min.y, sb.b.max.y),
         };
+        let at = 0.5 * (ends.0 + ends.1);
         if !(ends.0 < at && at < ends.1) {
             unresolved.push(sb.b); // no room left in f64
             continue;
         }
-        stack.push(make(hi));
-        stack.push(make(lo));
+        let (lo, hi) = sb.b.split(axis, at);
+        if exact_midpoint(ends.0, ends.1) {
+            let (l, h): (Vec<_>, Vec<_>) = sb.forms.iter().map(|f| f.split(axis, 0.5)).unzip();
+            stack.push(SystemBox { b: hi, forms: h });
+            stack.push(SystemBox { b: lo, forms: l });
+        } else {
+            stack.push(make(hi));
+            stack.push(make(lo));
+        }
     }
     let mut out: Vec<SystemRoot> = Vec::new();
     for (k, &(_, enclosure, point)) in certified.iter().enumerate() {
@@ -424,6 +438,55 @@ pub fn solve_system(
         });
     }
     out
+}
+
+/// A cheap screen before the Krawczyk test over `X ⊇ b`, from the forms of `f` and `g`
+/// over `b` (no conversion from `Poly`): with `J(b)` the Bernstein ranges of the
+/// Jacobian and `Y` the inverse of its midpoint, `K(X) ⊂ int X` needs about
+/// `Σ_c |δ_rc − (Y J)_rc| rad_c < rad_r` for both rows, which the wider `J(X)` only
+/// makes harder. A box failing it is split without the test: that costs boxes, never
+/// roots.
+fn may_contract(sb: &SystemBox) -> bool {
+    let (w, h) = (sb.b.width(), sb.b.height());
+    if !(w > 0.0 && h > 0.0) {
+        return true;
+    }
+    let partial = |k: usize, axis: Axis, len: f64| {
+        let r = sb.forms[k].derivative(axis).range();
+        Interval::new(r.lo / len, r.hi / len)
+    };
+    let j = [
+        partial(0, Axis::X, w),
+        partial(0, Axis::Y, h),
+        partial(1, Axis::X, w),
+        partial(1, Axis::Y, h),
+    ];
+    let jm = j.map(|i| i.mid());
+    let det = jm[0] * jm[3] - jm[1] * jm[2];
+    if !(det.is_finite() && det != 0.0) {
+        return false;
+    }
+    let y = [jm[3] / det, -jm[1] / det, -jm[2] / det, jm[0] / det];
+    let rad = [0.5 * w, 0.5 * h];
+    (0..2).all(|r| {
+        let spread: f64 = (0..2)
+            .map(|c| {
+                let yj =
+                    j[c] * Interval::point(y[2 * r]) + j[2 + c] * Interval::point(y[2 * r + 1]);
+                let delta = if r == c { 1.0 } else { 0.0 };
+                (Interval::point(delta) - yj).mag() * rad[c]
+            })
+            .sum();
+        spread < rad[r]
+    })
+}
+
+/// True when `(a + b) / 2` is the exact midpoint of `[a, b]`: the sum rounds to
+/// nothing (Knuth's TwoSum error term vanishes) and stays finite.
+fn exact_midpoint(a: f64, b: f64) -> bool {
+    let s = a + b;
+    let bb = s - a;
+    s.is_finite() && (a - (s - bb)) + (b - bb) == 0.0
 }
 
 enum Krawczyk {

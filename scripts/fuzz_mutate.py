@@ -18,8 +18,8 @@ classified:
                            [--keep DIR]
 
 Hangs and crashes are written to --keep (default: a temporary folder, printed) as
-reproducers with the command line, and so are the diagrams on which `gvd verify` hung
-or crashed. Exit 1 when any compute run hung or crashed, or verify crashed (a slow
+reproducers with the command line, and so are the scenes on which `gvd verify` hung
+or crashed, and the results that failed it (scene, diagram `*.out.json`, command). Exit 1 when any compute run hung or crashed, or verify crashed (a slow
 verify is reported, not failed: it is bounded by its sample cap, docs/FUZZING.md).
 """
 
@@ -232,7 +232,15 @@ def main():
         n += 1
         counts[kind] += 1
         if kind == "result" and "FAIL" in msg:
+            # a result gvd verify failed: kept with its diagram, to triage
             verify_fail += 1
+            stem = os.path.join(keep, f"verify-fail-{verify_fail:03}")
+            with open(stem + ".json", "w") as f:
+                f.write(text)
+            shutil.copyfile(os.path.join(work, "out.json"), stem + ".out.json")
+            with open(stem + ".txt", "w") as f:
+                f.write(f"from {name}\n{' '.join(cmd[2:])}\n{msg}\n")
+            print(f"VERIFY-FAIL from {name} {' '.join(opts)}: {msg}", flush=True)
         if kind == "result" and msg.startswith("VERIFY-CRASH"):
             verify_crash += 1
         if kind == "result" and msg.startswith("VERIFY-"):

@@ -66,6 +66,53 @@ fn the_soft_subdivision_computes_polygons_at_any_scale() {
 }
 
 #[test]
+fn an_epsilon_not_finer_than_the_domain_is_refused() {
+    // two arcs around a domain of 2e-300 at epsilon 1e-3 gave an empty diagram, on
+    // which verify then ran for minutes; points at epsilon 1e300 gave one vertex
+    for text in [
+        r#"{"domain": [-1e-300, -1e-300, 1e-300, 1e-300], "epsilon": 1e-3, "sites": [
+            {"kind": "arc", "center": [0, 0], "radius": 1, "start_angle": 1.5707963267948966, "end_angle": 3.141592653589793},
+            {"kind": "arc", "center": [0, 0], "radius": 1, "start_angle": 3.141592653589793, "end_angle": 4.71238898038469}]}"#,
+        r#"{"domain": [-2, -2, 2, 2], "epsilon": 1e300, "sites": [
+            {"kind": "point", "at": [0, 0]}, {"kind": "point", "at": [1, 1]}]}"#,
+    ] {
+        match Scene::from_json(text) {
+            Err(Error::Scene { field, message }) => {
+                assert_eq!(field, "epsilon");
+                assert!(message.contains("not finer than the domain"), "{message}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
+#[test]
+fn nearly_coincident_moebius_points_are_refused() {
+    // one ulp apart among 100 points, their edge was drawn 0.25 off their bisector
+    let text = r#"{"domain": [-2, -2, 2, 2], "sites": [
+        {"kind": "point", "at": [-1, 1], "metric": {"kind": "moebius", "scale": 1.0, "weight": 0.2}},
+        {"kind": "point", "at": [0.6491563620391108, 0.85], "metric": {"kind": "moebius", "scale": 1.0, "weight": 0.2}},
+        {"kind": "point", "at": [0.6491563620391109, 0.85], "metric": {"kind": "moebius", "scale": 1.0, "weight": 0.2}}]}"#;
+    match Scene::from_json(text) {
+        Err(Error::Site {
+            site,
+            field,
+            message,
+        }) => {
+            assert_eq!((site, field.as_str()), (2, "at"), "{message}");
+            assert!(
+                message.contains("from site 1 of the same metric"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    // a millionth of the domain apart they are computed
+    let apart = text.replace("0.6491563620391109", "0.649160362039111");
+    assert!(Scene::from_json(&apart).is_ok());
+}
+
+#[test]
 fn verify_takes_either_site_at_a_shared_corner() {
     // three segments at 1e-300: crossings at the edge of a shared end's tie zone were
     // reported as missing edges on some grids
@@ -97,4 +144,49 @@ fn verify_checks_a_floored_diagram_at_its_resolution() {
         "{:?}",
         report.warnings
     );
+}
+
+#[test]
+fn the_subdivision_refuses_nearly_coincident_euclidean_points() {
+    // one ulp apart among 200 points, the subdivision drew their edge 0.04 off the
+    // bisector; the exact engine separates them
+    let text = r#"{"domain": [-2, -2, 2, 2], "sites": [
+        {"kind": "point", "at": [1, 1]}, {"kind": "point", "at": [-0.36448245013538166, -1.2170467567215941]},
+        {"kind": "point", "at": [-0.3644824501353817, -1.2170467567215941]}]}"#;
+    let sc = Scene::from_json(text).unwrap();
+    assert_eq!(compute(&sc, &Options::default()).unwrap().edges.len(), 3);
+    let subdivision = Options {
+        engine: Engine::Subdivision,
+        ..Default::default()
+    };
+    match compute(&sc, &subdivision) {
+        Err(Error::Site { site, field, .. }) => assert_eq!((site, field.as_str()), (2, "at")),
+        other => panic!("{:?}", other.map(|d| d.edges.len())),
+    }
+}
+
+#[test]
+fn nearly_coincident_curves_are_refused() {
+    // a Bézier copied one ulp away: 7,674 edges between the two, on which verify ran
+    // past 15 s
+    let text = r#"{"domain": [-2, -2, 2, 2], "mode": "medial_axis", "sites": [
+        {"kind": "bezier", "control_points": [[-1.154465313655782, -1.0978534194064438], [0.06939246511291196, -1.5049250601810822], [1.3184113633526349, -1.1832311447651598]]},
+        {"kind": "bezier", "control_points": [[1.3184113633526349, -1.1832311447651598], [1.4502370884826767, 0.06487083288336364], [1.156792331071707, 1.2851276676375205]]},
+        {"kind": "bezier", "control_points": [[1.156792331071707, 1.2851276676375205], [-0.0027838159824428443, 1.456072865479234], [-1.122107104665853, 1.108287763881933]]},
+        {"kind": "bezier", "control_points": [[-1.122107104665853, 1.108287763881933], [-0.7235956812668687, -0.0008652321293843622], [-1.154465313655782, -1.0978534194064438]]},
+        {"kind": "bezier", "control_points": [[1.318411363352635, -1.1832311447651598], [1.4502370884826767, 0.06487083288336364], [1.156792331071707, 1.2851276676375205]]}]}"#;
+    match Scene::from_json(text) {
+        Err(Error::Site {
+            site,
+            field,
+            message,
+        }) => {
+            assert_eq!((site, field.as_str()), (4, "control_points"), "{message}");
+            assert!(
+                message.contains("from site 1 alike but for its control points"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
 }

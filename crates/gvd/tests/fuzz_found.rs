@@ -113,6 +113,16 @@ fn nearly_coincident_moebius_points_are_refused() {
 }
 
 #[test]
+fn edges_ending_at_a_corner_end_within_epsilon_of_it() {
+    // at epsilon 1e-9 the incremental engine stopped them 1e-9 of the domain short of
+    // their vertex: 4 epsilon
+    let sc = scene("hostile/V03_polylines_eps1e-9_scene");
+    let d = compute(&sc, &Options::default()).unwrap();
+    let report = verify(&sc, &d, &grid64()).unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}
+
+#[test]
 fn verify_takes_either_site_at_a_shared_corner() {
     // three segments at 1e-300: crossings at the edge of a shared end's tie zone were
     // reported as missing edges on some grids

@@ -181,8 +181,10 @@ def run_one(gvd, work, text, opts, timeout):
     if len(err) > MAX_MESSAGE:
         return "crash", dt, f"a message of {len(err)} characters", cmd
     if p.returncode == 0 and wrote:
+        # the diagram is checked in the mode it was computed in
+        mode = opts[opts.index("--mode"):][:2] if "--mode" in opts else []
         try:
-            v = subprocess.run([gvd, "verify", scene, out, "--grid", "64"], capture_output=True,
+            v = subprocess.run([gvd, "verify", scene, out, "--grid", "64"] + mode, capture_output=True,
                                timeout=2 * timeout + 5, stdin=subprocess.DEVNULL,
                                preexec_fn=limit_memory)
         except subprocess.TimeoutExpired:

@@ -18,8 +18,8 @@ classified:
                            [--keep DIR]
 
 Hangs and crashes are written to --keep (default: a temporary folder, printed) as
-reproducers with the command line, and so are the diagrams on which `gvd verify` hung
-or crashed. Exit 1 when any compute run hung or crashed, or verify crashed (a slow
+reproducers with the command line, and so are the scenes on which `gvd verify` hung
+or crashed, and the results that failed it (scene, diagram `*.out.json`, command). Exit 1 when any compute run hung or crashed, or verify crashed (a slow
 verify is reported, not failed: it is bounded by its sample cap, docs/FUZZING.md).
 """
 
@@ -181,8 +181,10 @@ def run_one(gvd, work, text, opts, timeout):
     if len(err) > MAX_MESSAGE:
         return "crash", dt, f"a message of {len(err)} characters", cmd
     if p.returncode == 0 and wrote:
+        # the diagram is checked in the mode it was computed in
+        mode = opts[opts.index("--mode"):][:2] if "--mode" in opts else []
         try:
-            v = subprocess.run([gvd, "verify", scene, out, "--grid", "64"], capture_output=True,
+            v = subprocess.run([gvd, "verify", scene, out, "--grid", "64"] + mode, capture_output=True,
                                timeout=2 * timeout + 5, stdin=subprocess.DEVNULL,
                                preexec_fn=limit_memory)
         except subprocess.TimeoutExpired:
@@ -232,7 +234,15 @@ def main():
         n += 1
         counts[kind] += 1
         if kind == "result" and "FAIL" in msg:
+            # a result gvd verify failed: kept with its diagram, to triage
             verify_fail += 1
+            stem = os.path.join(keep, f"verify-fail-{verify_fail:03}")
+            with open(stem + ".json", "w") as f:
+                f.write(text)
+            shutil.copyfile(os.path.join(work, "out.json"), stem + ".out.json")
+            with open(stem + ".txt", "w") as f:
+                f.write(f"from {name}\n{' '.join(cmd[2:])}\n{msg}\n")
+            print(f"VERIFY-FAIL from {name} {' '.join(opts)}: {msg}", flush=True)
         if kind == "result" and msg.startswith("VERIFY-CRASH"):
             verify_crash += 1
         if kind == "result" and msg.startswith("VERIFY-"):

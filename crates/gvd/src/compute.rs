@@ -245,6 +245,7 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
             });
         }
     }
+    scene.refuse_near_coincident_points()?;
     let params = subdivision::Params::for_scene(
         scene,
         options.subdivision.max_box,

@@ -345,6 +345,13 @@ impl Scene {
         validate::duplicate_site(&self.sites, true)
     }
 
+    /// Refuses Euclidean point sites too close for the subdivision's fields, as the
+    /// scene refuses such points of the other metrics: for the subdivision engine (the
+    /// exact engine separates them).
+    pub(crate) fn refuse_near_coincident_points(&self) -> Result<(), Error> {
+        validate::near_coincident_sites(&self.domain, self.epsilon, &self.sites, true)
+    }
+
     /// Checks and builds a scene. Refusals name the field (`domain`, `epsilon`) or the
     /// site index and its field, as for JSON input.
     pub fn new(domain: Aabb, epsilon: f64, mode: Mode, sites: Vec<Site>) -> Result<Scene, Error> {
@@ -447,7 +454,8 @@ impl SceneBuilder {
         self.sites.is_empty()
     }
     /// The scene, after the checks between sites: no duplicate sites, no overlapping
-    /// circles or ellipses, no number that f64 cannot resolve at the scene's epsilon.
+    /// circles or ellipses, no number that f64 cannot resolve at the scene's epsilon, no
+    /// two points of one metric too close for it.
     pub fn build(self) -> Result<Scene, Error> {
         if let Some((i, j)) = validate::duplicate_point(&self.sites) {
             return Err(Error::site(i, "at", format!("duplicate of site {j}")));
@@ -457,6 +465,7 @@ impl SceneBuilder {
             .unwrap_or_else(|| Scene::default_epsilon(&self.domain));
         validate::duplicate_site(&self.sites, false)?;
         validate::check_precision(&self.domain, epsilon, &self.sites)?;
+        validate::near_coincident_sites(&self.domain, epsilon, &self.sites, false)?;
         validate::overlapping_ovals(&self.sites)?;
         Ok(Scene {
             epsilon,

@@ -338,6 +338,106 @@ fn defining_field(kind: &SiteKind) -> &'static str {
     }
 }
 
+/// Refuses two point sites of one metric (Euclidean ones only with `euclidean`: the
+/// exact engine computes those), or two free-form curves alike but for control points,
+/// closer than f64 can separate at the scene's epsilon: the bisector of sites `δ` apart
+/// in a domain of size `D` is placed only to about `D²·2^-52/δ` (the fields' rounding
+/// over the slope of their difference), epsilon taken at least 1e-9 of `D`. Two lp
+/// points one ulp apart otherwise give a bisector anywhere in their cell.
+pub(crate) fn near_coincident_sites(
+    domain: &Aabb,
+    epsilon: f64,
+    sites: &[Site],
+    euclidean: bool,
+) -> Result<(), Error> {
+    let side = domain.longest_side();
+    let closest = side * (side / epsilon.max(1e-9 * side)) * f64::EPSILON;
+    // each candidate by a point of it: a point site's, a curve's first control point
+    let anchored: Vec<(usize, Point)> = sites
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| match &s.kind {
+            SiteKind::Point { at, metric } if euclidean || *metric != Metric::Euclidean => {
+                Some((i, *at))
+            }
+            SiteKind::Bezier { control_points, .. } | SiteKind::Bspline { control_points, .. } => {
+                control_points.first().map(|&p| (i, p))
+            }
+            _ => None,
+        })
+        .collect();
+    if anchored.len() < 2 {
+        return Ok(());
+    }
+    let extent = bounds_of_points(anchored.iter().map(|a| a.1));
+    let cell = closest.max(extent.longest_side() / 4096.0);
+    let grid = BucketGrid::new(extent, cell, 4096, anchored.len(), |k| {
+        Aabb::new(anchored[k].1, anchored[k].1)
+    });
+    // how far apart two control polygons alike in all else are (their farthest pair)
+    let apart = |p: &[Point], q: &[Point]| {
+        (p.len() == q.len()).then(|| p.iter().zip(q).map(|(a, b)| a.dist(*b)).fold(0.0, f64::max))
+    };
+    let distance = |a: &SiteKind, b: &SiteKind| match (a, b) {
+        (SiteKind::Point { at: p, metric: m }, SiteKind::Point { at: q, metric: n }) => {
+            (m == n).then(|| p.dist(*q))
+        }
+        (
+            SiteKind::Bezier {
+                control_points: p,
+                weights: w,
+            },
+            SiteKind::Bezier {
+                control_points: q,
+                weights: v,
+            },
+        ) if w == v => apart(p, q),
+        (
+            SiteKind::Bspline {
+                degree: d,
+                control_points: p,
+                knots: k,
+                weights: w,
+                closed: c,
+            },
+            SiteKind::Bspline {
+                degree: e,
+                control_points: q,
+                knots: l,
+                weights: v,
+                closed: f,
+            },
+        ) if (d, k, w, c) == (e, l, v, f) => apart(p, q),
+        _ => None,
+    };
+    for (k, &(i, p)) in anchored.iter().enumerate() {
+        let mut near = None;
+        grid.any_around(p, 1, |j| {
+            let earlier = anchored[j as usize].0;
+            let d = distance(&sites[i].kind, &sites[earlier].kind);
+            let hit = (j as usize) < k && d.is_some_and(|d| d < closest);
+            if hit {
+                near = d.map(|d| (earlier, d));
+            }
+            hit
+        });
+        if let Some((j, d)) = near {
+            let alike = match sites[i].kind {
+                SiteKind::Point { .. } => "of the same metric",
+                _ => "alike but for its control points",
+            };
+            return Err(Error::site(
+                i,
+                defining_field(&sites[i].kind),
+                format!(
+                    "{d:.3e} from site {j} {alike}: at epsilon {epsilon:e} f64 places their bisector only if they are at least {closest:.3e} apart; merge them or move them apart"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// How much coarser than epsilon f64 may resolve a scene's numbers. A coordinate or a
 /// length `x` is known to `|x|·2^-52` (its ulp); an epsilon somewhat finer than that is
 /// floored by the engines (the subdivision reports `epsilon_floored_from`), but a number
@@ -346,12 +446,22 @@ fn defining_field(kind: &SiteKind) -> &'static str {
 /// inside a unit domain.
 const COARSEST: f64 = 64.0;
 
-/// Checks that f64 can resolve the scene at its epsilon: the domain's coordinates, each
+/// Checks that epsilon is finer than the domain (a coarser one leaves nothing to
+/// resolve: an empty diagram) and that f64 can resolve the scene at it: the domain's coordinates, each
 /// site's coordinates, radii and semi-axes, arc angles (times the radius), and the
 /// weights of the quadratic metrics (a power weight `w` enters as `w²`, the others as
 /// they are, against the field's slope of about the domain's size). Names the site and
 /// field of the first number too large.
 pub(crate) fn check_precision(domain: &Aabb, epsilon: f64, sites: &[Site]) -> Result<(), Error> {
+    let side = domain.longest_side();
+    if epsilon >= side {
+        return Err(Error::scene(
+            "epsilon",
+            format!(
+                "epsilon {epsilon:e} is not finer than the domain ({side:e} on its longest side): the diagram would resolve nothing in it; give a smaller epsilon or a larger domain"
+            ),
+        ));
+    }
     let ulp = |x: f64| x.abs() * f64::EPSILON;
     let limit = COARSEST * epsilon;
     let extent = domain.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -366,7 +476,7 @@ pub(crate) fn check_precision(domain: &Aabb, epsilon: f64, sites: &[Site]) -> Re
         ));
     }
     // a field value `v` is resolved to ulp(v), a position to that over the field's slope
-    let slope = domain.longest_side();
+    let slope = side;
     for (i, site) in sites.iter().enumerate() {
         let too_coarse = |field: &str, what: &str, x: f64, resolved: f64| {
             Error::site(

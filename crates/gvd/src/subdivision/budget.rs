@@ -115,6 +115,16 @@ impl Budget {
         true
     }
 
+    /// The output points not yet taken.
+    pub fn points_left(&self) -> usize {
+        self.max_points.saturating_sub(self.points.load(Relaxed))
+    }
+
+    /// Marks the points as run out (a polyline needed more than [`points_left`](Self::points_left)).
+    pub fn run_out_of_points(&self) {
+        self.out_of_points.store(true, Relaxed);
+    }
+
     /// The run's watch.
     pub fn watch(&self) -> &Watch {
         &self.watch

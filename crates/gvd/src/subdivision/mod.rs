@@ -90,18 +90,27 @@ pub(crate) fn run_scene(
         ..*params
     };
     let mut out = run_watched(&fields, &scaled_params, watch)?;
-    out.complex.scale(1.0 / s);
-    for leaf in &mut out.leaves {
-        leaf.aabb = Aabb::new(leaf.aabb.min * (1.0 / s), leaf.aabb.max * (1.0 / s));
-    }
-    let stats = &mut out.complex.stats;
-    for key in ["resolution", "epsilon_floored_from"] {
-        if let Some(v) = stats.get(key).and_then(|v| v.as_f64()) {
-            stats.insert(key.into(), json!(v / s));
-        }
-    }
-    stats.insert("rescaled_by".into(), json!(s));
+    out.scale_back(s);
     Ok(out)
+}
+
+impl Output {
+    /// Brings the output of a run on the scene scaled by `s` back to the scene's
+    /// coordinates: the diagram, the leaves and the lengths among the stats, and records
+    /// `stats.rescaled_by`.
+    fn scale_back(&mut self, s: f64) {
+        self.complex.scale(1.0 / s);
+        for leaf in &mut self.leaves {
+            leaf.aabb = Aabb::new(leaf.aabb.min * (1.0 / s), leaf.aabb.max * (1.0 / s));
+        }
+        let stats = &mut self.complex.stats;
+        for key in ["resolution", "epsilon_floored_from"] {
+            if let Some(v) = stats.get(key).and_then(|v| v.as_f64()) {
+                stats.insert(key.into(), json!(v / s));
+            }
+        }
+        stats.insert("rescaled_by".into(), json!(s));
+    }
 }
 
 /// Records each algebraic curve's enclosure figures in `stats.algebraic`.

@@ -15,8 +15,9 @@ impl Checker<'_> {
     /// nearer at the crossing, both halves are searched again (depth ≤ 4). An edge or
     /// piece whose foot at the crossing is its end corner, beyond it by more than the
     /// last bracket, becomes that corner (the bisection crossed the corner's zone
-    /// boundary). Crossings in ties of coincident
-    /// feet, inside closed sites and outside the medial-axis region are skipped.
+    /// boundary). Crossings in ties of coincident feet (or feet at a shared point and
+    /// within two brackets of it), inside closed sites and outside the medial-axis
+    /// region are skipped.
     pub(super) fn crossings(
         &self,
         qa: Point,
@@ -82,7 +83,13 @@ impl Checker<'_> {
             }
         }
         let tie = match (self.fields[a].foot(x), self.fields[b].foot(x)) {
-            (Some(fa), Some(fb)) => fa.dist(fb) <= 1e-7 * self.scale,
+            (Some(fa), Some(fb)) => {
+                // at the edge of a shared point's tie zone, the feet of a crossing
+                // known within the last bracket are up to about the bracket apart
+                let apart = fa.dist(fb);
+                let shared = |f: Point| !self.gens.shared.owners_at(f).is_empty();
+                apart <= 1e-7 * self.scale || (apart <= 2.0 * bracket && (shared(fa) || shared(fb)))
+            }
             _ => false,
         };
         if !tie && self.in_region(x) {

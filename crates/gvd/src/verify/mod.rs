@@ -97,7 +97,9 @@ pub const MAX_GRID: usize = 4096;
 
 /// Checks `diagram` against `scene`. Refuses scenes the checker cannot evaluate: site
 /// kinds without a distance field here yet (Béziers, B-splines), and
-/// ellipses in `medial_axis` mode.
+/// ellipses in `medial_axis` mode. A diagram whose engine floored an epsilon finer than
+/// f64 resolves (`stats.epsilon_floored_from`) is checked at its `stats.resolution`,
+/// with a warning.
 pub fn verify(
     scene: &Scene,
     diagram: &VoronoiComplex,
@@ -118,9 +120,38 @@ pub fn verify(
             message: format!("must be a finite number > 0, found {}", opts.slack),
         });
     }
-    // Scenes whose fields share a degree and would overflow or underflow (beyond 2^±200
-    // for distances) are checked at a power-of-two scale near 1 (exact, the same
-    // diagram), as the engines compute them.
+    if let Some(eps) = floored_epsilon(scene, diagram) {
+        let coarser = Scene::new(scene.domain(), eps, scene.mode(), scene.sites().to_vec())?;
+        let mut report = check_scaled(&coarser, diagram, opts)?;
+        report.warnings.push(format!(
+            "checked at the diagram's resolution {eps:e}: the engine floored epsilon {:e}, finer than it resolves in this domain",
+            scene.epsilon()
+        ));
+        return Ok(report);
+    }
+    check_scaled(scene, diagram, opts)
+}
+
+/// The resolution a diagram states it was computed at when its engine floored the
+/// scene's epsilon (`stats.resolution` with `stats.epsilon_floored_from`); believed up
+/// to 1e-9 of the domain, as such a floor comes from f64's resolution only.
+fn floored_epsilon(scene: &Scene, diagram: &VoronoiComplex) -> Option<f64> {
+    let stat = |key: &str| diagram.stats.get(key).and_then(|v| v.as_f64());
+    let resolution = stat("resolution")?;
+    let believed = resolution > scene.epsilon()
+        && resolution <= 1e-9 * scene.domain().longest_side()
+        && stat("epsilon_floored_from") == Some(scene.epsilon());
+    believed.then_some(resolution)
+}
+
+/// [`check`], at a power-of-two scale near 1 for scenes whose fields share a degree
+/// and would overflow or underflow (beyond 2^±200 for distances): exact, the same
+/// diagram, as the engines compute them.
+fn check_scaled(
+    scene: &Scene,
+    diagram: &VoronoiComplex,
+    opts: &VerifyOptions,
+) -> Result<Report, Error> {
     if let Some(s) = scene.unit_scale() {
         let mut scaled = diagram.clone();
         scaled.scale(s);

@@ -51,9 +51,10 @@ impl<'a> Nearest<'a> {
             }
         }
         let (w, h) = ((hi.x - lo.x).max(1e-300), (hi.y - lo.y).max(1e-300));
-        let cell = (w * h / anchored.len().max(1) as f64)
-            .sqrt()
-            .max(w.max(h) / 2048.0);
+        // about one anchor a cell; `w·h` would underflow in a domain of 1e-300 (a grid
+        // of 2048² empty cells, each query scanning them all)
+        let cell =
+            (w.sqrt() * h.sqrt() / (anchored.len().max(1) as f64).sqrt()).max(w.max(h) / 2048.0);
         let grid = BucketGrid::new(Aabb::new(lo, hi), cell, 2049, anchored.len(), |k| {
             Aabb::new(anchored[k].1, anchored[k].1)
         });

@@ -60,16 +60,14 @@ pub(super) fn fmt_g3(x: f64) -> String {
         }
     };
     if !(-4..3).contains(&e) {
-        let m = x / 10f64.powi(e);
-        // rounding may carry the mantissa to 10
-        let (m, e) = if (m.abs() * 100.0).round() >= 1000.0 {
-            (m / 10.0, e + 1)
-        } else {
-            (m, e)
-        };
+        // Rust's exponent form rounds the mantissa (and carries it to the exponent),
+        // subnormals included
+        let text = format!("{x:.2e}");
+        let (m, e) = text.split_once('e').unwrap_or((&text, "0"));
+        let e: i32 = e.parse().unwrap_or(0);
         format!(
             "{}e{}{:02}",
-            trim(format!("{m:.2}")),
+            trim(m.to_string()),
             if e < 0 { '-' } else { '+' },
             e.abs()
         )

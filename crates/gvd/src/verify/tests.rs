@@ -380,6 +380,9 @@ fn summary_numbers_format_like_python() {
     assert_eq!(fmt_g3(12.345), "12.3");
     assert_eq!(fmt_g3(1234.0), "1.23e+03");
     assert_eq!(fmt_g3(0.0), "0");
+    assert_eq!(fmt_g3(9.9999e-8), "1e-07");
+    assert_eq!(fmt_g3(1.04e-315), "1.04e-315");
+    assert_eq!(fmt_g3(-2.5e300), "-2.5e+300");
 }
 
 /// The Euclidean Voronoi diagram of `p` clipped to `dom`, from spade's Delaunay
@@ -622,4 +625,38 @@ fn either_owner_of_a_shared_end_may_name_its_region() {
         let r = check(&s, &d);
         assert!(r.complete < 1.0 && !r.passed, "{}", r.summary_line());
     }
+}
+
+/// Two arcs at 1e-170 checked without the unit rescaling: the nearest-site grid's cell
+/// (from `width · height`, which underflowed to 0) became 1/2048 of the domain, and each
+/// query scanned a million empty cells (`gvd verify` ran for minutes).
+#[test]
+fn the_nearest_site_grid_of_a_tiny_domain_stays_small() {
+    let r = 1e-170;
+    let arc = |a0: f64, a1: f64| SiteKind::Arc {
+        center: Point::new(0.0, 0.0),
+        radius: r,
+        start_angle: a0,
+        end_angle: a1,
+    };
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let sc = Scene::new(
+        Aabb::from_array([-2.0 * r, -2.0 * r, 2.0 * r, 2.0 * r]),
+        1e-3 * r,
+        Mode::Voronoi,
+        [arc(FRAC_PI_2, PI), arc(PI, 1.5 * PI)]
+            .into_iter()
+            .map(|kind| Site { id: None, kind })
+            .collect(),
+    )
+    .unwrap();
+    let d = crate::compute(&sc, &crate::Options::default()).unwrap();
+    let opts = VerifyOptions {
+        grid: 64,
+        ..Default::default()
+    };
+    let start = std::time::Instant::now();
+    let report = super::check(&sc, &d, &opts, 1.0).unwrap();
+    assert!(start.elapsed().as_secs_f64() < 5.0, "{:?}", start.elapsed());
+    assert!(report.passed, "{}", report.summary_line());
 }

@@ -234,7 +234,8 @@ pub(super) fn assemble(
     } = merged;
     drop((raw_edges, root));
     // Where an edge ends on a site (a corner), the two distance fields are not
-    // differentiable; the polyline stops a hair (1e-9 of the domain) short of it.
+    // differentiable; the polyline stops a hair (1e-9 of the domain, at most epsilon/8)
+    // short of it.
     let domain = scene.domain();
     let hair = 1e-9 * domain.longest_side();
     let (chains, links) = chain_edges(&kept, &incident, &labels, |v| raw_vertices[v].t <= hair);
@@ -398,14 +399,15 @@ impl Drawing<'_> {
         (points, stretches)
     }
 
-    /// Moves a polyline's first (or last) point a hair towards the next one.
+    /// Moves a polyline's first (or last) point a hair towards the next one, by at
+    /// most `tol / 2` (epsilon/8: the end stays within epsilon of its vertex).
     fn pull(&self, points: &mut [Point], at_start: bool) {
         let n = points.len();
         let (end, next) = if at_start { (0, 1) } else { (n - 1, n - 2) };
         let (p, q) = (points[end], points[next]);
         let len = p.dist(q);
         if len > 0.0 {
-            points[end] = p.lerp(q, (self.hair / len).min(0.5));
+            points[end] = p.lerp(q, (self.hair.min(0.5 * self.tol) / len).min(0.5));
         }
     }
 

@@ -434,8 +434,16 @@ impl Bisector {
         })
     }
 
-    /// Appends to `out` a polyline from `from` to `to` within `tol` of the bisector.
-    pub(crate) fn polyline(&self, from: Point, to: Point, tol: f64, out: &mut Vec<Point>) {
+    /// Appends to `out` a polyline from `from` to `to` within `tol` of the bisector;
+    /// `false` (with the chord appended) when that takes more than `max` interior points.
+    pub(crate) fn polyline(
+        &self,
+        from: Point,
+        to: Point,
+        tol: f64,
+        max: usize,
+        out: &mut Vec<Point>,
+    ) -> bool {
         out.push(from);
         match self {
             Bisector::Line { .. } | Bisector::Chord { .. } => {}
@@ -448,8 +456,15 @@ impl Bisector {
                 let step = (8.0 * tol * hp.abs()).sqrt();
                 let apex = (up - u0) * (up - u1) < 0.0;
                 let stops: &[f64] = if apex { &[u0, *up, u1] } else { &[u0, u1] };
+                let pieces = stops
+                    .windows(2)
+                    .map(|w| ((w[1] - w[0]).abs() / step).ceil());
+                if pieces.sum::<f64>() > max as f64 {
+                    out.push(to);
+                    return false;
+                }
                 for w in stops.windows(2) {
-                    let n = ((w[1] - w[0]).abs() / step).ceil().clamp(1.0, 1e5) as usize;
+                    let n = ((w[1] - w[0]).abs() / step).ceil().max(1.0) as usize;
                     for k in 1..n {
                         let u = w[0] + (w[1] - w[0]) * k as f64 / n as f64;
                         out.push(self.point(from, to, u).0);
@@ -461,10 +476,17 @@ impl Bisector {
             }
             Bisector::Conic(conic) => {
                 let (s0, s1) = self.range(from, to);
-                out.extend(conic.interior_samples(s0, s1, tol));
+                match conic.interior_samples(s0, s1, tol, max) {
+                    Some(samples) => out.extend(samples),
+                    None => {
+                        out.push(to);
+                        return false;
+                    }
+                }
             }
         }
         out.push(to);
+        true
     }
 }
 

@@ -358,11 +358,17 @@ impl SegmentDiagram {
             return;
         }
         let start = out.len();
-        sites
+        let left = self.budget.points_left();
+        let drawn = sites
             .bisector(ga, gb, pa, pb)
-            .polyline(pa, pb, tol * self.scale, out);
+            .polyline(pa, pb, tol * self.scale, left, out);
         out[start..].iter_mut().for_each(|p| *p = *p * inv);
-        self.budget.take_points(out.len() - start);
+        if drawn {
+            self.budget.take_points(out.len() - start);
+        } else {
+            // the run then ends with the budget's error, never with the chord
+            self.budget.run_out_of_points();
+        }
     }
 }
 

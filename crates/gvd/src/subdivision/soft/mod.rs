@@ -69,8 +69,25 @@ fn grown(d: &Aabb) -> Aabb {
 
 /// Computes the diagram of a polygonal scene by YSL12, or refuses a site it cannot
 /// take; [`Error::Budget`] when the boxes or points run out, [`Error::Cancelled`] (or
-/// the time limit's [`Error::Budget`]) when `watch` stops the run.
+/// the time limit's [`Error::Budget`]) when `watch` stops the run. A scene far from unit
+/// size ([`Scene::unit_scale`]) is computed at an exact power-of-two scale and scaled
+/// back, as the other engines do (its squared distances would underflow or overflow).
 pub(crate) fn run_scene(
+    scene: &Scene,
+    filters: &Filters,
+    limits: &Limits,
+    watch: &Watch,
+) -> Result<Output, Error> {
+    let Some(s) = scene.unit_scale() else {
+        return run_unit(scene, filters, limits, watch);
+    };
+    let mut out = run_unit(&scene.scaled(s), filters, limits, watch)?;
+    out.scale_back(s);
+    Ok(out)
+}
+
+/// [`run_scene`] on a scene near unit size.
+fn run_unit(
     scene: &Scene,
     filters: &Filters,
     limits: &Limits,

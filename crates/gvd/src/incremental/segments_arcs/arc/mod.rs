@@ -194,9 +194,14 @@ impl Conic {
     /// Points strictly between parameters `s0` and `s1` such that the polyline through
     /// `x(s0)`, them and `x(s1)` is within `tol` of the curve: a convex piece whose
     /// tangent turns by `ψ = Δs + Δβ`, `|ψ| < π/2`, lies within `(L/2)·tan(|ψ|/2)` of
-    /// its chord `L`.
-    pub(crate) fn interior_samples(&self, s0: f64, s1: f64, tol: f64) -> Vec<Point> {
-        const MAX_POINTS: usize = 100_000;
+    /// its chord `L`. `None` when that takes more than `max` points.
+    pub(crate) fn interior_samples(
+        &self,
+        s0: f64,
+        s1: f64,
+        tol: f64,
+        max: usize,
+    ) -> Option<Vec<Point>> {
         const MAX_DEPTH: u32 = 40;
         let mut out = Vec::new();
         // (s_a, s_b, depth), left piece last so it is handled first.
@@ -210,12 +215,10 @@ impl Conic {
                 }
                 _ => true,
             };
-            let done = flat
-                || depth >= MAX_DEPTH
-                || out.len() + stack.len() >= MAX_POINTS
-                || mid == a
-                || mid == b;
-            if done {
+            if out.len() + stack.len() >= max {
+                return None;
+            }
+            if flat || depth >= MAX_DEPTH || mid == a || mid == b {
                 if b != s1 {
                     if let Some((x, _)) = self.point(b) {
                         out.push(x);
@@ -226,7 +229,7 @@ impl Conic {
                 stack.push((a, mid, depth + 1));
             }
         }
-        out
+        Some(out)
     }
 }
 

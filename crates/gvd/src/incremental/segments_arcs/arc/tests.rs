@@ -318,7 +318,7 @@ fn boundary_and_polyline() {
 
         for tol in [1e-2, 1e-4] {
             let mut pts = Vec::new();
-            bis.polyline(from, to, tol, &mut pts);
+            assert!(bis.polyline(from, to, tol, 100_000, &mut pts));
             assert_eq!((pts[0], *pts.last().unwrap()), (from, to));
             assert!(pts.len() < 100_000);
             for k in 0..=1000 {

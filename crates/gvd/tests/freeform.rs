@@ -99,15 +99,20 @@ fn poly_dist(q: Point, pts: &[Point]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-fn inside(q: Point, ring: &[Point]) -> bool {
+/// Even-odd inside the closed loops that `curves` (polylines joined end to end) make.
+fn inside_of(q: Point, curves: &[Vec<Point>]) -> bool {
     let mut c = false;
-    for w in ring.windows(2) {
+    for w in curves.iter().flat_map(|c| c.windows(2)) {
         let (a, b) = (w[0], w[1]);
         if (a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x) {
             c = !c;
         }
     }
     c
+}
+
+fn inside(q: Point, ring: &[Point]) -> bool {
+    inside_of(q, std::slice::from_ref(&ring.to_vec()))
 }
 
 /// Every edge point of a `voronoi` diagram is outside the closed curves, at equal
@@ -216,11 +221,10 @@ fn check_medial_axis_by_brute_force(sc: &Scene, d: &VoronoiComplex, step: usize)
     assert_eq!(sc.mode(), Mode::MedialAxis);
     assert!(!d.edges.is_empty() && !d.vertices.is_empty());
     let curves: Vec<Vec<Point>> = sc.sites().iter().map(|s| dense(&s.kind, 4000)).collect();
-    let ring: Vec<Point> = curves.concat();
     let eps = sc.epsilon();
     // the distances to the generators' curves, and the nearest of all
     let check = |q: Point, sites: &[usize]| -> f64 {
-        assert!(inside(q, &ring), "{q:?} outside the domain");
+        assert!(inside_of(q, &curves), "{q:?} outside the domain");
         let dist: Vec<f64> = curves.iter().map(|c| poly_dist(q, c)).collect();
         let own: Vec<f64> = sites.iter().map(|&i| dist[i]).collect();
         let (lo, hi) = own
@@ -398,4 +402,69 @@ fn other_site_kinds_are_refused_by_name() {
     )
     .unwrap_err();
     assert!(matches!(err, Error::Unsupported { site: 1, .. }), "{err}");
+}
+
+/// The letter O of DejaVu Serif, read from the shipped SVG (22 quadratic pieces in two
+/// contours under a flipping transform): its medial axis lies in the ring between the
+/// contours (the counter is a hole), equidistant from its generators; pruned at λ = 20
+/// font units it is one closed loop with no vertex, a third of the ring's width and
+/// more from both contours.
+#[test]
+fn medial_axis_of_the_letter_o_read_from_svg() {
+    use gvd::io::{read_scene, Format, ReadOptions};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/glyph-O.svg");
+    let options = ReadOptions {
+        mode: Some(Mode::MedialAxis),
+        ..Default::default()
+    };
+    let (sc, warnings) = read_scene(&std::fs::read(path).unwrap(), Format::Svg, &options).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(sc.sites().len(), 22);
+    let d = run(&sc, Engine::Auto);
+    check_medial_axis_by_brute_force(&sc, &d, 2);
+    let counter: Vec<Point> = sc.sites()[..8]
+        .iter()
+        .flat_map(|s| dense(&s.kind, 400))
+        .collect();
+    for e in &d.edges {
+        for q in &e.points {
+            assert!(!inside(*q, &counter), "{q:?} in the counter");
+        }
+    }
+    let pruned = compute(
+        &sc,
+        &Options {
+            prune: gvd::Pruning {
+                lambda: Some(20.0),
+                object_angle: None,
+            },
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        pruned.vertices.is_empty(),
+        "{} vertices",
+        pruned.vertices.len()
+    );
+    assert_eq!(pruned.edges.len(), 1);
+    let ring = &pruned.edges[0];
+    assert_eq!((ring.from, ring.to), (None, None));
+    assert_eq!(ring.points.first(), ring.points.last());
+    let curves: Vec<Vec<Point>> = sc.sites().iter().map(|s| dense(&s.kind, 400)).collect();
+    for q in &ring.points {
+        let to_counter = curves[..8]
+            .iter()
+            .map(|c| poly_dist(*q, c))
+            .fold(f64::INFINITY, f64::min);
+        let to_outside = curves[8..]
+            .iter()
+            .map(|c| poly_dist(*q, c))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            (to_counter - to_outside).abs() < 2.0 * sc.epsilon(),
+            "{q:?}"
+        );
+        assert!(to_counter > 50.0, "{q:?} {to_counter}");
+    }
 }

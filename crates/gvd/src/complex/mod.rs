@@ -190,6 +190,33 @@ impl VoronoiComplex {
         }
     }
 
+    /// Removes the vertices that no edge ends at, renumbering the edges' ends.
+    pub fn drop_unused_vertices(&mut self) {
+        let mut used = vec![false; self.vertices.len()];
+        for e in &self.edges {
+            for v in [e.from, e.to].into_iter().flatten() {
+                used[v] = true;
+            }
+        }
+        let mut renumbered = vec![usize::MAX; used.len()];
+        let mut kept = 0;
+        for (v, &u) in used.iter().enumerate() {
+            if u {
+                renumbered[v] = kept;
+                kept += 1;
+            }
+        }
+        let mut v = 0;
+        self.vertices.retain(|_| {
+            v += 1;
+            used[v - 1]
+        });
+        for e in &mut self.edges {
+            e.from = e.from.map(|v| renumbered[v]);
+            e.to = e.to.map(|v| renumbered[v]);
+        }
+    }
+
     /// Checks the structural invariants every algorithm must keep: edge ends name
     /// existing vertices that list the edge's generators, edges have at least two
     /// points, and a loop with no vertex is closed. Returns the first violation.

@@ -174,7 +174,7 @@ fn prune_with(
     let merged_vertices = merge_degree_two(&mut edges, vertices.len());
     complex.edges = edges;
     complex.vertices = vertices;
-    drop_unused_vertices(complex);
+    complex.drop_unused_vertices();
     Ok(PruneCounts {
         edges_before: counts_before.0,
         vertices_before: counts_before.1,
@@ -392,32 +392,5 @@ fn placeholder(sites: [Generator; 2]) -> Edge {
         bisector: Vec::new(),
         clearance: Vec::new(),
         sites_along: Vec::new(),
-    }
-}
-
-/// Removes the vertices that no edge ends at, renumbering the edges' ends.
-fn drop_unused_vertices(complex: &mut VoronoiComplex) {
-    let mut used = vec![false; complex.vertices.len()];
-    for e in &complex.edges {
-        for v in [e.from, e.to].into_iter().flatten() {
-            used[v] = true;
-        }
-    }
-    let mut renumbered = vec![usize::MAX; used.len()];
-    let mut kept = 0;
-    for (v, &u) in used.iter().enumerate() {
-        if u {
-            renumbered[v] = kept;
-            kept += 1;
-        }
-    }
-    let mut v = 0;
-    complex.vertices.retain(|_| {
-        v += 1;
-        used[v - 1]
-    });
-    for e in &mut complex.edges {
-        e.from = e.from.map(|v| renumbered[v]);
-        e.to = e.to.map(|v| renumbered[v]);
     }
 }

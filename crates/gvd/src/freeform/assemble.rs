@@ -187,7 +187,10 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
             let first = points[0];
             *points.last_mut().unwrap() = first;
         }
-        if points.len() < 2 {
+        // a run from a vertex back to it no longer than the snap (ε/4) is no edge:
+        // degenerate meetings (a centre of curvature of two spans) leave thousands
+        let length: f64 = points.windows(2).map(|w| w[0].dist(w[1])).sum();
+        if points.len() < 2 || (from.is_some() && from == to && length <= snap) {
             continue;
         }
         complex.edges.push(Edge {
@@ -200,5 +203,81 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
             bisector: Vec::new(),
         });
     }
+    merge_close_vertices(&mut complex, snap);
     (complex, loose)
+}
+
+/// Merges the vertices closer than `snap`, or joined by an edge no longer than it (a
+/// degenerate meeting of four or more generators comes out as vertices a rounding
+/// apart, some joined by tiny edges), into one that lists the generators of all,
+/// dropping those edges; a vertex left without an edge (the end of a run from a vertex
+/// back to it) goes too.
+fn merge_close_vertices(complex: &mut VoronoiComplex, snap: f64) {
+    let short = |e: &Edge| e.points.windows(2).map(|w| w[0].dist(w[1])).sum::<f64>() <= snap;
+    let mut root: Vec<usize> = (0..complex.vertices.len()).collect();
+    let find = |root: &mut [usize], mut v: usize| {
+        while root[v] != v {
+            root[v] = root[root[v]];
+            v = root[v];
+        }
+        v
+    };
+    let join = |root: &mut Vec<usize>, a: usize, b: usize| {
+        let (ra, rb) = (find(root, a), find(root, b));
+        root[ra.max(rb)] = ra.min(rb);
+    };
+    for e in &complex.edges {
+        if let (Some(a), Some(b)) = (e.from, e.to) {
+            if a != b && short(e) {
+                join(&mut root, a, b);
+            }
+        }
+    }
+    let mut by_x: Vec<usize> = (0..complex.vertices.len()).collect();
+    by_x.sort_by(|&a, &b| {
+        complex.vertices[a]
+            .at
+            .x
+            .total_cmp(&complex.vertices[b].at.x)
+    });
+    for (k, &a) in by_x.iter().enumerate() {
+        let p = complex.vertices[a].at;
+        for &b in &by_x[k + 1..] {
+            let q = complex.vertices[b].at;
+            if q.x - p.x > snap {
+                break;
+            }
+            if p.dist(q) <= snap {
+                join(&mut root, a, b);
+            }
+        }
+    }
+    for v in 0..root.len() {
+        let r = find(&mut root, v);
+        if r != v {
+            let merged = complex.vertices[v].sites.clone();
+            let sites = &mut complex.vertices[r].sites;
+            for g in merged {
+                if !sites.contains(&g) {
+                    sites.push(g);
+                }
+            }
+            sites.sort();
+        }
+    }
+    complex
+        .edges
+        .retain(|e| !(e.from.is_some() && e.to.is_some() && e.from != e.to && short(e)));
+    for e in &mut complex.edges {
+        for end in [&mut e.from, &mut e.to] {
+            *end = end.map(|v| find(&mut root, v));
+        }
+        if let Some(v) = e.from {
+            e.points[0] = complex.vertices[v].at;
+        }
+        if let Some(v) = e.to {
+            *e.points.last_mut().expect("two points or more") = complex.vertices[v].at;
+        }
+    }
+    complex.drop_unused_vertices();
 }

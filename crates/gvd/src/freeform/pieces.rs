@@ -8,7 +8,7 @@
 
 use crate::complex::{FeatureKind, Generator};
 use crate::geom::bezier::RationalBezier;
-use crate::geom::ring::signed_area;
+use crate::geom::ring::{even_odd_contains, signed_area};
 use crate::geom::{Aabb, Point};
 use crate::num::bernstein::Bernstein1;
 use crate::num::roots::{isolate, refine};
@@ -305,19 +305,12 @@ fn links(sites: &[Option<SiteSpans>], tol: f64) -> Vec<[Option<Link>; 2]> {
     out
 }
 
-/// The side of each site where the diagram lies: outside a closed curve (inside in
-/// `medial_axis` mode), or outside/inside the loop that a chain of joined open sites
-/// closes, on the side of each site's own direction; `Both` for the rest.
+/// The side of each site where the diagram lies. The closed curves and the chains of
+/// joined open sites that close up are loops, and their even-odd inside is the region
+/// (a loop inside an odd number of others is a hole's boundary): in `medial_axis` mode
+/// the diagram lies on each loop's side towards the region, in the other modes on its
+/// side away from it, on the side of each site's own direction; `Both` for the rest.
 fn sides(sites: &[Option<SiteSpans>], links: &[[Option<Link>; 2]], mode: Mode) -> Vec<Side> {
-    let want_inside = mode == Mode::MedialAxis;
-    // the side of a loop that runs along `ring`
-    let side_of = |ring: &[Point]| {
-        if (signed_area(ring) > 0.0) == want_inside {
-            Side::Left
-        } else {
-            Side::Right
-        }
-    };
     let ring_of = |s: &SiteSpans, reversed: bool| {
         let mut v: Vec<Point> = s
             .spans
@@ -333,12 +326,20 @@ fn sides(sites: &[Option<SiteSpans>], links: &[[Option<Link>; 2]], mode: Mode) -
         }
         v
     };
-    let mut out = vec![Side::Both; sites.len()];
+    // each loop: its sites (with whether each runs against the loop) and its ring
+    struct Loop {
+        members: Vec<(usize, bool)>,
+        ring: Vec<Point>,
+    }
+    let mut loops: Vec<Loop> = Vec::new();
     let mut seen = vec![false; sites.len()];
     for (i, s) in sites.iter().enumerate() {
         let Some(s) = s else { continue };
         if s.closed {
-            out[i] = side_of(&ring_of(s, false));
+            loops.push(Loop {
+                members: vec![(i, false)],
+                ring: ring_of(s, false),
+            });
             continue;
         }
         if seen[i] {
@@ -369,14 +370,32 @@ fn sides(sites: &[Option<SiteSpans>], links: &[[Option<Link>; 2]], mode: Mode) -
                 .iter()
                 .flat_map(|&(k, reversed)| ring_of(sites[k].as_ref().unwrap(), reversed))
                 .collect();
-            let side = side_of(&ring);
-            for &(k, reversed) in &chain {
-                out[k] = match (side, reversed) {
-                    (Side::Left, true) => Side::Right,
-                    (Side::Right, true) => Side::Left,
-                    (side, _) => side,
-                };
-            }
+            loops.push(Loop {
+                members: chain,
+                ring,
+            });
+        }
+    }
+    let mut out = vec![Side::Both; sites.len()];
+    for (k, Loop { members, ring }) in loops.iter().enumerate() {
+        let depth = loops
+            .iter()
+            .enumerate()
+            .filter(|&(j, other)| j != k && even_odd_contains(&other.ring, ring[0]))
+            .count();
+        // the loop's inside is the region's near it when it is not a hole
+        let inside_wanted = (depth % 2 == 0) == (mode == Mode::MedialAxis);
+        let side = if (signed_area(ring) > 0.0) == inside_wanted {
+            Side::Left
+        } else {
+            Side::Right
+        };
+        for &(site, reversed) in members {
+            out[site] = match (side, reversed) {
+                (Side::Left, true) => Side::Right,
+                (Side::Right, true) => Side::Left,
+                (side, _) => side,
+            };
         }
     }
     out

@@ -362,7 +362,7 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
     }
     if let Some(asked) = d.stats.get("epsilon_floored_from").and_then(|v| v.as_f64()) {
         eprintln!(
-            "gvd: warning: epsilon {asked:e} is finer than the subdivision resolves in this domain; the diagram is at resolution {}",
+            "gvd: warning: epsilon {asked:e} is finer than f64 resolves in this domain; the diagram is at resolution {}",
             stat(d, "resolution")
         );
     }

@@ -172,7 +172,7 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     let points = euclidean_points(scene);
     match (options.engine, points) {
         (Engine::Auto | Engine::Incremental, Some(points)) => {
-            return timed_incremental(|| {
+            return timed_incremental(scene, || {
                 let diagram = incremental::PointDiagram::watched(&points, scene.domain(), &watch)?;
                 let (mut complex, traced) = diagram.to_complex_with_cells();
                 drop(diagram);
@@ -193,7 +193,7 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
             });
         }
         (Engine::Auto | Engine::Incremental, None) if incremental::supports(scene) => {
-            return timed_incremental(|| {
+            return timed_incremental(scene, || {
                 incremental::scene_voronoi(
                     scene,
                     &options.incremental,
@@ -369,13 +369,25 @@ fn check_medial_axis(scene: &Scene) -> Result<(), Error> {
     ))
 }
 
-/// Runs an incremental computation and records its time and engine in `stats`.
+/// Runs an incremental computation and records its time and engine in `stats`, and, for
+/// an epsilon finer than f64 resolves over the domain ([`Aabb::f64_resolution`]), the
+/// resolution the diagram has (`resolution`, `epsilon_floored_from`, as the subdivision
+/// engine reports its floor).
 fn timed_incremental(
+    scene: &Scene,
     run: impl FnOnce() -> Result<VoronoiComplex, Error>,
 ) -> Result<Computation, Error> {
     let start = std::time::Instant::now();
     let mut complex = run()?;
     let stats = &mut complex.stats;
+    let floor = scene.domain().f64_resolution();
+    if scene.epsilon() < floor {
+        stats.insert("resolution".into(), serde_json::json!(floor));
+        stats.insert(
+            "epsilon_floored_from".into(),
+            serde_json::json!(scene.epsilon()),
+        );
+    }
     stats.insert(
         "seconds".into(),
         serde_json::json!(start.elapsed().as_secs_f64()),

@@ -200,3 +200,34 @@ fn nearly_coincident_curves_are_refused() {
         other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn the_incremental_engine_states_its_resolution_below_f64s() {
+    // Twelve cocircular points at epsilon 1e-17 in a domain of size 4, where f64 places
+    // a vertex only to a few 1e-16: the diagram said nothing and verify failed it at
+    // 80 epsilons. It now states the resolution it has, and verify checks it there.
+    let sc = scene("fuzz/cocircular-12-eps1e-17");
+    let d = compute(&sc, &Options::default()).unwrap();
+    assert_eq!(d.stats["engine"], "incremental");
+    assert_eq!(d.stats["epsilon_floored_from"], 1e-17);
+    let resolution = d.stats["resolution"].as_f64().unwrap();
+    assert!(resolution > 1e-15 && resolution < 1e-12, "{resolution}");
+    let report = verify(&sc, &d, &grid64()).unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}
+
+#[test]
+fn a_free_form_medial_axis_of_curves_that_bound_nothing_is_refused() {
+    // Four Bézier curves joined into a loop, one end moved off the loop (to y = 5e-324):
+    // the chain no longer closes, and the medial axis was written outside any region.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/freeform/freeform-bezier4-medial_axis.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    v["sites"][0]["control_points"][0][1] = serde_json::json!(5e-324);
+    let sc = Scene::from_value(&v).unwrap();
+    match compute(&sc, &Options::default()) {
+        Err(e) => assert_eq!(e.field(), Some("mode"), "{e}"),
+        Ok(d) => panic!("{} edges outside any region", d.edges.len()),
+    }
+}

@@ -261,6 +261,13 @@ impl Aabb {
         (t0 <= t1).then_some((t0, t1))
     }
 
+    /// The finest distance a computation in f64 resolves over the box: a thousand ulps
+    /// of its largest coordinate (below that f64 cannot tell points apart).
+    pub fn f64_resolution(&self) -> f64 {
+        let magnitude = self.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        1024.0 * f64::EPSILON * magnitude
+    }
+
     /// The distance from `p` to the box boundary when `p` lies outside, else 0.
     pub fn outside_distance(&self, p: Point) -> f64 {
         let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);

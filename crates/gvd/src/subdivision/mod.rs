@@ -410,9 +410,7 @@ pub(crate) fn run_watched<F: DistanceField>(
 /// coordinate (below that f64 cannot tell points apart), and two of the lattice's
 /// smallest boxes (below that no box can be split). A finer epsilon is floored here.
 pub fn resolution(domain: &Aabb, lattice: &tree::Lattice) -> f64 {
-    let magnitude = domain.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let f64_floor = 1024.0 * f64::EPSILON * magnitude;
-    f64_floor.max(2.0 * lattice.smallest_box())
+    domain.f64_resolution().max(2.0 * lattice.smallest_box())
 }
 
 /// The sorted intersection of two sorted site lists.

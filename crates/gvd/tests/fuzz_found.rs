@@ -231,3 +231,27 @@ fn a_free_form_medial_axis_of_curves_that_bound_nothing_is_refused() {
         Ok(d) => panic!("{} edges outside any region", d.edges.len()),
     }
 }
+
+#[test]
+fn the_scan_of_box_sides_heeds_the_time_limit() {
+    // Three quadratic fields scaled to 1e-150 at epsilon 5e-7 of the domain (found by
+    // the structured harness): one box side's scan ran 35 s past a 2 s time limit.
+    let sc = scene("fuzz/fields-scaled-1e-150-side-scan");
+    let options = Options {
+        control: gvd::Control {
+            timeout: Some(std::time::Duration::from_secs(2)),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let start = std::time::Instant::now();
+    let result = compute(&sc, &options);
+    assert!(
+        start.elapsed().as_secs_f64() < 10.0,
+        "{:?}",
+        start.elapsed()
+    );
+    if let Err(e) = result {
+        assert!(matches!(e, Error::Budget { .. }), "{e}");
+    }
+}

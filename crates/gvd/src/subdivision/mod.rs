@@ -330,10 +330,11 @@ pub(crate) fn run_watched<F: DistanceField>(
                 (c, state)
             })
             .collect();
-        segments::transitions(fields, sites, s.from, s.to, scan_len)
+        segments::transitions(fields, sites, s.from, s.to, scan_len, budget.watch())
     };
     let transitions: Vec<Vec<segments::Transition>> =
         map(params.parallel, &segs.segments, scan_one);
+    budget.check(eps)?;
     let t_scan = start.elapsed().as_secs_f64();
 
     let tol = Tolerances {

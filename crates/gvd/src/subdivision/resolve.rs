@@ -312,21 +312,28 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
             Axis::X => (Point::new(mid, b.min.y), Point::new(mid, b.max.y)),
             Axis::Y => (Point::new(b.min.x, mid), Point::new(b.max.x, mid)),
         };
-        let inner: Vec<Port> = transitions_of(self.fields, sites, p0, p1, self.tol.scan)
-            .into_iter()
-            .map(|t| {
-                let id = PortId::Inner {
-                    leaf: self.leaf,
-                    index: self.next_inner,
-                };
-                self.next_inner += 1;
-                Port {
-                    id,
-                    at: t.at,
-                    pair: t.pair,
-                }
-            })
-            .collect();
+        let inner: Vec<Port> = transitions_of(
+            self.fields,
+            sites,
+            p0,
+            p1,
+            self.tol.scan,
+            self.budget.watch(),
+        )
+        .into_iter()
+        .map(|t| {
+            let id = PortId::Inner {
+                leaf: self.leaf,
+                index: self.next_inner,
+            };
+            self.next_inner += 1;
+            Port {
+                id,
+                at: t.at,
+                pair: t.pair,
+            }
+        })
+        .collect();
         let (mut lower, mut upper): (Vec<Port>, Vec<Port>) = ports
             .into_iter()
             .partition(|p| self.goes_lower(&b, p, axis, mid));

@@ -5,6 +5,7 @@
 //! same transitions: the global diagram is stitched through them.
 
 use super::tree::{IBox, Lattice};
+use crate::control::Watch;
 use crate::geom::{Aabb, Point};
 use crate::site::DistanceField;
 
@@ -199,6 +200,7 @@ pub fn transitions<F: DistanceField>(
     p0: Point,
     p1: Point,
     min_len: f64,
+    watch: &Watch,
 ) -> Vec<Transition> {
     let mut out = Vec::new();
     if sites.len() < 2 {
@@ -211,6 +213,7 @@ pub fn transitions<F: DistanceField>(
         p1,
         len: p0.dist(p1),
         min_len,
+        watch,
     };
     let l0 = label_in(fields, &sites, p0);
     let l1 = label_in(fields, &sites, p1);
@@ -225,13 +228,14 @@ pub fn transitions_of<F: DistanceField>(
     p0: Point,
     p1: Point,
     min_len: f64,
+    watch: &Watch,
 ) -> Vec<Transition> {
     let b = segment_box(p0, p1);
     let sites = cands
         .iter()
         .map(|&c| (c, fields[c as usize].state(&b)))
         .collect();
-    transitions(fields, sites, p0, p1, min_len)
+    transitions(fields, sites, p0, p1, min_len, watch)
 }
 
 struct Scan<'a, F> {
@@ -240,6 +244,8 @@ struct Scan<'a, F> {
     p1: Point,
     len: f64,
     min_len: f64,
+    /// A stopped run (cancel flag, time limit) scans no further.
+    watch: &'a Watch,
 }
 
 impl<F: DistanceField> Scan<'_, F> {
@@ -268,7 +274,7 @@ impl<F: DistanceField> Scan<'_, F> {
         sites: Vec<(u32, F::State)>,
         out: &mut Vec<Transition>,
     ) {
-        if self.settled(t0, t1, l0, l1) {
+        if self.settled(t0, t1, l0, l1) || !self.watch.tick(0) {
             return;
         }
         let short = (t1 - t0) * self.len <= self.min_len;

@@ -37,6 +37,43 @@ fn brute_clearance(sc: &Scene, q: Point) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// Asserts that every vertex's clearance and that of every `step`-th point of every
+/// edge is `brute(scene, point)` within epsilon; returns how many were checked.
+fn assert_clearances(
+    name: &str,
+    sc: &Scene,
+    d: &gvd::VoronoiComplex,
+    brute: fn(&Scene, Point) -> f64,
+    step: usize,
+) -> usize {
+    let eps = sc.epsilon();
+    let mut checked = 0;
+    for v in &d.vertices {
+        let r = v
+            .clearance
+            .unwrap_or_else(|| panic!("{name}: vertex without clearance"));
+        let want = brute(sc, v.at);
+        assert!(
+            (r - want).abs() <= eps,
+            "{name}: vertex {:?}: {r} vs {want}",
+            v.at
+        );
+        checked += 1;
+    }
+    for e in &d.edges {
+        assert_eq!(e.clearance.len(), e.points.len(), "{name}");
+        for (&q, &r) in e.points.iter().zip(&e.clearance).step_by(step) {
+            let want = brute(sc, q);
+            assert!(
+                (r - want).abs() <= eps,
+                "{name}: edge point {q:?}: {r} vs {want}"
+            );
+            checked += 1;
+        }
+    }
+    checked
+}
+
 #[test]
 fn every_clearance_is_the_distance_to_the_boundary() {
     for name in [
@@ -48,32 +85,8 @@ fn every_clearance_is_the_distance_to_the_boundary() {
         "arcs-0030-points-0020-complex.json",
     ] {
         let sc = scene(name);
-        let eps = sc.epsilon();
         let d = compute(&sc, &Options::default()).unwrap();
-        let mut checked = 0;
-        for v in &d.vertices {
-            let r = v
-                .clearance
-                .unwrap_or_else(|| panic!("{name}: vertex without clearance"));
-            let want = brute_clearance(&sc, v.at);
-            assert!(
-                (r - want).abs() <= eps,
-                "{name}: vertex {:?}: {r} vs {want}",
-                v.at
-            );
-            checked += 1;
-        }
-        for e in &d.edges {
-            assert_eq!(e.clearance.len(), e.points.len(), "{name}");
-            for (&q, &r) in e.points.iter().zip(&e.clearance) {
-                let want = brute_clearance(&sc, q);
-                assert!(
-                    (r - want).abs() <= eps,
-                    "{name}: edge point {q:?}: {r} vs {want}"
-                );
-                checked += 1;
-            }
-        }
+        let checked = assert_clearances(name, &sc, &d, brute_clearance, 1);
         assert!(checked > 20, "{name}: only {checked} points");
     }
 }
@@ -251,32 +264,8 @@ fn free_form_clearances_are_the_distance_to_the_curves() {
     ] {
         let path = format!("{}/tests/data/freeform/{name}", env!("CARGO_MANIFEST_DIR"));
         let sc = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
-        let eps = sc.epsilon();
         let d = compute(&sc, &Options::default()).unwrap();
-        let mut checked = 0;
-        for v in &d.vertices {
-            let r = v
-                .clearance
-                .unwrap_or_else(|| panic!("{name}: no vertex clearance"));
-            let want = brute_curve_distance(&sc, v.at);
-            assert!(
-                (r - want).abs() <= eps,
-                "{name}: vertex {:?}: {r} vs {want}",
-                v.at
-            );
-            checked += 1;
-        }
-        for e in &d.edges {
-            assert_eq!(e.clearance.len(), e.points.len(), "{name}");
-            for (&q, &r) in e.points.iter().zip(&e.clearance).step_by(3) {
-                let want = brute_curve_distance(&sc, q);
-                assert!(
-                    (r - want).abs() <= eps,
-                    "{name}: edge point {q:?}: {r} vs {want}"
-                );
-                checked += 1;
-            }
-        }
+        let checked = assert_clearances(name, &sc, &d, brute_curve_distance, 3);
         assert!(checked > 10, "{name}: only {checked} points");
     }
 }

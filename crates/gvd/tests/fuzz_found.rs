@@ -14,6 +14,22 @@ fn scene(name: &str) -> Scene {
     Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
+/// Asserts that the scene `text` is refused at `site`'s `field` with a message that
+/// contains `says`.
+fn assert_refused(text: &str, site: usize, field: &str, says: &str) {
+    match Scene::from_json(text) {
+        Err(Error::Site {
+            site: s,
+            field: f,
+            message,
+        }) => {
+            assert_eq!((s, f.as_str()), (site, field), "{message}");
+            assert!(message.contains(says), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
 fn grid64() -> VerifyOptions {
     VerifyOptions {
         grid: 64,
@@ -93,20 +109,7 @@ fn nearly_coincident_moebius_points_are_refused() {
         {"kind": "point", "at": [-1, 1], "metric": {"kind": "moebius", "scale": 1.0, "weight": 0.2}},
         {"kind": "point", "at": [0.6491563620391108, 0.85], "metric": {"kind": "moebius", "scale": 1.0, "weight": 0.2}},
         {"kind": "point", "at": [0.6491563620391109, 0.85], "metric": {"kind": "moebius", "scale": 1.0, "weight": 0.2}}]}"#;
-    match Scene::from_json(text) {
-        Err(Error::Site {
-            site,
-            field,
-            message,
-        }) => {
-            assert_eq!((site, field.as_str()), (2, "at"), "{message}");
-            assert!(
-                message.contains("from site 1 of the same metric"),
-                "{message}"
-            );
-        }
-        other => panic!("{other:?}"),
-    }
+    assert_refused(text, 2, "at", "from site 1 of the same metric");
     // a millionth of the domain apart they are computed
     let apart = text.replace("0.6491563620391109", "0.649160362039111");
     assert!(Scene::from_json(&apart).is_ok());
@@ -185,20 +188,12 @@ fn nearly_coincident_curves_are_refused() {
         {"kind": "bezier", "control_points": [[1.156792331071707, 1.2851276676375205], [-0.0027838159824428443, 1.456072865479234], [-1.122107104665853, 1.108287763881933]]},
         {"kind": "bezier", "control_points": [[-1.122107104665853, 1.108287763881933], [-0.7235956812668687, -0.0008652321293843622], [-1.154465313655782, -1.0978534194064438]]},
         {"kind": "bezier", "control_points": [[1.318411363352635, -1.1832311447651598], [1.4502370884826767, 0.06487083288336364], [1.156792331071707, 1.2851276676375205]]}]}"#;
-    match Scene::from_json(text) {
-        Err(Error::Site {
-            site,
-            field,
-            message,
-        }) => {
-            assert_eq!((site, field.as_str()), (4, "control_points"), "{message}");
-            assert!(
-                message.contains("from site 1 alike but for its control points"),
-                "{message}"
-            );
-        }
-        other => panic!("{other:?}"),
-    }
+    assert_refused(
+        text,
+        4,
+        "control_points",
+        "from site 1 alike but for its control points",
+    );
 }
 
 #[test]

@@ -5,14 +5,16 @@
 //! an `Error` of an engine must not be an `Internal` one unless the scene is hostile.
 //!
 //! `GVD_FUZZ_CASES` sets the number of cases of each target (default 48: some seconds
-//! in `cargo test --release`); docs/FUZZING.md gives the long runs made by hand.
+//! in `cargo test --release`), and `GVD_FUZZ_RUN_SEED` the runner's seed (default 1, so
+//! that CI reruns the same cases; `random` draws a fresh one);
+//! docs/FUZZING.md gives the long runs made by hand.
 
 use gvd::verify::{verify, VerifyOptions};
 use gvd::{
     compute, offset, Aabb, Control, Engine, Error, Limits, Metric, Mode, Options, Scene, Site,
 };
 use proptest::prelude::*;
-use proptest::test_runner::Config;
+use proptest::test_runner::{Config, RngSeed};
 use serde_json::Value;
 use std::time::{Duration, Instant};
 
@@ -26,8 +28,18 @@ fn config() -> Config {
         .ok()
         .and_then(|c| c.parse().ok())
         .unwrap_or(48);
+    let rng_seed = match std::env::var("GVD_FUZZ_RUN_SEED").as_deref() {
+        Ok("random") => RngSeed::Random,
+        Ok(seed) => RngSeed::Fixed(
+            seed.parse()
+                .expect("GVD_FUZZ_RUN_SEED: an integer or `random`"),
+        ),
+        Err(_) => RngSeed::Fixed(1),
+    };
+    eprintln!("GVD_FUZZ_RUN_SEED={rng_seed:?} GVD_FUZZ_CASES={cases}");
     Config {
         cases,
+        rng_seed,
         // a failing case is reported as found: shrinking reruns slow scenes
         max_shrink_iters: 64,
         failure_persistence: None,

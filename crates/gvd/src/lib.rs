@@ -36,6 +36,7 @@ mod clearance;
 pub mod complex;
 mod compute;
 mod control;
+mod disjoint_sets;
 mod error;
 mod freeform;
 pub mod geom;

@@ -11,6 +11,7 @@
 use super::pieces::Pieces;
 use super::trim::{End, Run};
 use crate::complex::{Edge, Generator, SmallVec, Vertex, VoronoiComplex};
+use crate::disjoint_sets::DisjointSets;
 use crate::geom::Point;
 use std::collections::HashMap;
 
@@ -214,22 +215,11 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
 /// back to it) goes too.
 fn merge_close_vertices(complex: &mut VoronoiComplex, snap: f64) {
     let short = |e: &Edge| e.points.windows(2).map(|w| w[0].dist(w[1])).sum::<f64>() <= snap;
-    let mut root: Vec<usize> = (0..complex.vertices.len()).collect();
-    let find = |root: &mut [usize], mut v: usize| {
-        while root[v] != v {
-            root[v] = root[root[v]];
-            v = root[v];
-        }
-        v
-    };
-    let join = |root: &mut Vec<usize>, a: usize, b: usize| {
-        let (ra, rb) = (find(root, a), find(root, b));
-        root[ra.max(rb)] = ra.min(rb);
-    };
+    let mut sets = DisjointSets::new(complex.vertices.len());
     for e in &complex.edges {
         if let (Some(a), Some(b)) = (e.from, e.to) {
             if a != b && short(e) {
-                join(&mut root, a, b);
+                sets.union(a, b);
             }
         }
     }
@@ -248,12 +238,12 @@ fn merge_close_vertices(complex: &mut VoronoiComplex, snap: f64) {
                 break;
             }
             if p.dist(q) <= snap {
-                join(&mut root, a, b);
+                sets.union(a, b);
             }
         }
     }
-    for v in 0..root.len() {
-        let r = find(&mut root, v);
+    for v in 0..complex.vertices.len() {
+        let r = sets.find(v);
         if r != v {
             let merged = complex.vertices[v].sites.clone();
             let sites = &mut complex.vertices[r].sites;
@@ -270,7 +260,7 @@ fn merge_close_vertices(complex: &mut VoronoiComplex, snap: f64) {
         .retain(|e| !(e.from.is_some() && e.to.is_some() && e.from != e.to && short(e)));
     for e in &mut complex.edges {
         for end in [&mut e.from, &mut e.to] {
-            *end = end.map(|v| find(&mut root, v));
+            *end = end.map(|v| sets.find(v));
         }
         if let Some(v) = e.from {
             e.points[0] = complex.vertices[v].at;

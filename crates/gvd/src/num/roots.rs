@@ -16,6 +16,7 @@
 //! pieces are reported as uncertified, so every call terminates quickly. No root is ever
 //! missed: a piece is dropped only by the exclusion test.
 
+use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Axis, Point};
 use crate::num::bernstein::{Bernstein1, Bernstein2};
 use crate::num::poly::Poly;
@@ -646,26 +647,18 @@ fn inside(a: &Aabb, b: &Aabb) -> bool {
 /// The hulls of the connected groups of touching (closed) boxes.
 fn clusters(boxes: Vec<Aabb>) -> Vec<Aabb> {
     let n = boxes.len();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn find(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let mut sets = DisjointSets::new(n);
     // boxes are few (the unresolved ones): the quadratic scan is fine
     for i in 0..n {
         for j in i + 1..n {
             if intersect(&boxes[i], &boxes[j]).is_some() {
-                let (a, b) = (find(&mut parent, i), find(&mut parent, j));
-                parent[a] = b;
+                sets.union(i, j);
             }
         }
     }
     let mut hulls: Vec<(usize, Aabb)> = Vec::new();
     for (i, b) in boxes.iter().enumerate() {
-        let r = find(&mut parent, i);
+        let r = sets.find(i);
         match hulls.iter_mut().find(|h| h.0 == r) {
             Some(h) => {
                 h.1 = Aabb::new(

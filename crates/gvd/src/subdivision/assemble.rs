@@ -4,6 +4,7 @@
 
 use super::resolve::{End, FoundVertex, LeafOutput, PortId};
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
+use crate::disjoint_sets::DisjointSets;
 use crate::geom::Point;
 use std::collections::HashMap;
 
@@ -139,21 +140,13 @@ fn build_complex(
     merge_len: f64,
     tol: f64,
 ) -> VoronoiComplex {
-    let mut parent: Vec<usize> = (0..found.len()).collect();
-    fn root(parent: &mut [usize], mut v: usize) -> usize {
-        while parent[v] != v {
-            parent[v] = parent[parent[v]];
-            v = parent[v];
-        }
-        v
-    }
+    let mut sets = DisjointSets::new(found.len());
     let mut short = vec![false; chains.len()];
     for (k, c) in chains.iter().enumerate() {
         if let [Some(a), Some(b)] = c.ends {
             if length(&c.points) <= merge_len {
                 short[k] = true;
-                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-                parent[ra.max(rb)] = ra.min(rb);
+                sets.union(a, b);
             }
         }
     }
@@ -161,7 +154,7 @@ fn build_complex(
     let mut index = vec![usize::MAX; found.len()];
     let mut acc: Vec<(Point, usize, Vec<u32>)> = Vec::new();
     for (v, fv) in found.iter().enumerate() {
-        let r = root(&mut parent, v);
+        let r = sets.find(v);
         if index[r] == usize::MAX {
             index[r] = acc.len();
             acc.push((Point::new(0.0, 0.0), 0, Vec::new()));
@@ -184,7 +177,7 @@ fn build_complex(
                 .collect(),
         });
     }
-    let mut vid = |v: usize| index[root(&mut parent, v)];
+    let mut vid = |v: usize| index[sets.find(v)];
     for (k, mut c) in chains.into_iter().enumerate() {
         if short[k] {
             continue;

@@ -5,18 +5,9 @@ use super::graph::GHOST;
 use super::predicates::{circumcenter, incircle};
 use super::PointDiagram;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
+use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Point};
 use crate::par::{filter_map_range, map_range, unzip_range};
-
-/// Union–find with path halving.
-fn find(parent: &mut [u32], mut v: u32) -> u32 {
-    while parent[v as usize] != v {
-        let g = parent[parent[v as usize] as usize];
-        parent[v as usize] = g;
-        v = g;
-    }
-    v
-}
 
 /// What the edge pass needs of a vertex, packed so that the random access to an
 /// edge's far end costs one cache miss: its group's position, group and output index.
@@ -94,16 +85,13 @@ fn vertex_groups(d: &PointDiagram) -> (Vec<Node>, Option<Vec<u32>>) {
     if cocircular.is_empty() {
         return (nodes, None);
     }
-    let mut parent: Vec<u32> = (0..nv as u32).collect();
+    let mut sets = DisjointSets::new(nv);
     for &(u, w) in &cocircular {
-        let (ru, rw) = (find(&mut parent, u), find(&mut parent, w));
-        parent[ru.max(rw) as usize] = ru.min(rw);
+        sets.union(u as usize, w as usize);
     }
-    for v in 0..nv as u32 {
-        // full compression: the root is the group's least vertex
-        parent[v as usize] = find(&mut parent, v);
-    }
-    (nodes, Some(parent))
+    // the root is the group's least vertex
+    let roots = sets.roots().into_iter().map(|r| r as u32).collect();
+    (nodes, Some(roots))
 }
 
 /// The output vertices: the groups whose representative lies in the closed domain,

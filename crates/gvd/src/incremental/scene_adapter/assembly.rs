@@ -5,6 +5,7 @@
 use super::phases::Phases;
 use super::Generators;
 use crate::complex::{BisectorPiece, Edge, Generator, SmallVec, Vertex, VoronoiComplex};
+use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Point};
 use crate::incremental::segments_arcs::{joints, Gen, RawEdge, RawVertex, SegmentDiagram};
 use crate::par::{filter_map_range, join, map_range};
@@ -31,15 +32,6 @@ type Link = (usize, bool);
 pub(super) struct Stretch {
     pub(super) start: usize,
     pub(super) gens: [Gen; 2],
-}
-
-/// Union–find with path halving.
-fn find(parent: &mut [usize], mut v: usize) -> usize {
-    while parent[v] != v {
-        parent[v] = parent[parent[v]];
-        v = parent[v];
-    }
-    v
 }
 
 /// A raw edge kept for the output, its ends merged across zero-length edges.
@@ -304,13 +296,12 @@ fn merge_raw(
     let tips = joints::collapse(&joints, tip_tol, &mut raw_vertices, &mut raw_edges, length);
     // Vertices joined by zero-length edges are one vertex, and so are the vertices
     // of a tangent joint's tip.
-    let mut parent: Vec<usize> = (0..nv).collect();
+    let mut sets = DisjointSets::new(nv);
     let zero_ends = raw_edges.iter().filter(|e| e.zero).map(|e| e.ends);
     for [a, b] in zero_ends.chain(tips) {
-        let (a, b) = (find(&mut parent, a), find(&mut parent, b));
-        parent[a.max(b)] = a.min(b);
+        sets.union(a, b);
     }
-    let root: Vec<u32> = (0..nv).map(|v| find(&mut parent, v) as u32).collect();
+    let root: Vec<u32> = sets.roots().into_iter().map(|r| r as u32).collect();
     Ok(Merged {
         joints,
         raw_vertices,

@@ -13,6 +13,9 @@ impl VoronoiComplex {
     /// where set, else the least distance to its generators:
     /// Euclidean for the geometric kinds, the field's value for the other kinds.
     pub fn clearances(&self, scene: &Scene) -> Vec<f64> {
+        if let Some(stored) = self.vertices.iter().map(|v| v.clearance).collect() {
+            return stored;
+        }
         with_feet(scene, |feet| {
             self.vertices
                 .iter()
@@ -29,24 +32,27 @@ impl VoronoiComplex {
     /// distance to the generators (which agree within epsilon). Left unset where
     /// unknown: a vertex's is `None`, an edge with any unknown point gets none.
     pub fn add_clearances(&mut self, scene: &Scene) {
-        with_feet(scene, |feet| {
-            for v in &mut self.vertices {
-                let r = feet.generators_clearance(&v.sites, v.at);
-                v.clearance = r.is_finite().then_some(r);
-            }
-            for e in &mut self.edges {
-                let radii: Vec<f64> = e
-                    .points
-                    .iter()
-                    .map(|&q| feet.generators_clearance(&e.sites, q))
-                    .collect();
-                e.clearance = if radii.iter().all(|r| r.is_finite()) {
-                    radii
-                } else {
-                    Vec::new()
-                };
-            }
-        })
+        with_feet(scene, |feet| self.store_clearances(feet))
+    }
+
+    /// [`VoronoiComplex::add_clearances`] with the feet of the scene's generators.
+    pub(crate) fn store_clearances(&mut self, feet: &Feet) {
+        for v in &mut self.vertices {
+            let r = feet.generators_clearance(&v.sites, v.at);
+            v.clearance = r.is_finite().then_some(r);
+        }
+        for e in &mut self.edges {
+            let radii: Vec<f64> = e
+                .points
+                .iter()
+                .map(|&q| feet.generators_clearance(&e.sites, q))
+                .collect();
+            e.clearance = if radii.iter().all(|r| r.is_finite()) {
+                radii
+            } else {
+                Vec::new()
+            };
+        }
     }
 }
 

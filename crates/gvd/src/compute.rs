@@ -1,7 +1,8 @@
 //! The library's entry point: a scene in, its Voronoi complex out.
 
+use crate::clearance::{with_feet, Feet};
 use crate::complex::cells;
-use crate::complex::prune::{prune, Pruning};
+use crate::complex::prune::{prune_with, Pruning};
 use crate::complex::VoronoiComplex;
 use crate::control::{Control, Watch};
 use crate::error::Error;
@@ -127,33 +128,50 @@ pub fn compute_with_boxes(scene: &Scene, options: &Options) -> Result<Computatio
         });
     }
     let mut out = run_engine(scene, options)?;
-    if scene.mode() != Mode::Voronoi {
-        out.complex.add_clearances(scene);
-    }
-    if scene.mode() == Mode::MedialAxis {
-        if let Some((center, radius)) = out.complex.max_inscribed_circle() {
-            out.complex.stats.insert(
-                "max_inscribed_circle".into(),
-                serde_json::json!({ "center": [center.x, center.y], "radius": radius }),
-            );
-        }
-    }
-    if options.prune.is_on() {
-        let counts = prune(&mut out.complex, scene, &options.prune)?;
-        let stats = serde_json::json!({
-            "lambda": options.prune.lambda,
-            "object_angle_degrees": options.prune.object_angle.map(f64::to_degrees),
-            "edges_before": counts.edges_before,
-            "vertices_before": counts.vertices_before,
-            "cut_ends": counts.cut_ends,
-            "merged_vertices": counts.merged_vertices,
-        });
-        out.complex.stats.insert("pruning".into(), stats);
+    if scene.mode() != Mode::Voronoi || options.prune.is_on() {
+        // the feet are built once: the free-form curves' take a search structure
+        with_feet(scene, |feet| {
+            add_clearances_and_prune(&mut out.complex, scene, &options.prune, feet)
+        })?;
     }
     if scene.sites().iter().any(|s| s.id.is_some()) {
         out.complex.site_ids = scene.sites().iter().map(|s| s.id.clone()).collect();
     }
     Ok(out)
+}
+
+/// The clearances outside `voronoi` mode, the maximum inscribed circle in `medial_axis`
+/// mode, then the pruning when `pruning` sets a criterion ([`compute_with_boxes`]).
+fn add_clearances_and_prune(
+    complex: &mut VoronoiComplex,
+    scene: &Scene,
+    pruning: &Pruning,
+    feet: &Feet,
+) -> Result<(), Error> {
+    if scene.mode() != Mode::Voronoi {
+        complex.store_clearances(feet);
+    }
+    if scene.mode() == Mode::MedialAxis {
+        if let Some((center, radius)) = complex.max_inscribed_circle() {
+            complex.stats.insert(
+                "max_inscribed_circle".into(),
+                serde_json::json!({ "center": [center.x, center.y], "radius": radius }),
+            );
+        }
+    }
+    if pruning.is_on() {
+        let counts = prune_with(complex, scene, feet, pruning)?;
+        let stats = serde_json::json!({
+            "lambda": pruning.lambda,
+            "object_angle_degrees": pruning.object_angle.map(f64::to_degrees),
+            "edges_before": counts.edges_before,
+            "vertices_before": counts.vertices_before,
+            "cut_ends": counts.cut_ends,
+            "merged_vertices": counts.merged_vertices,
+        });
+        complex.stats.insert("pruning".into(), stats);
+    }
+    Ok(())
 }
 
 /// The engine the options and the scene choose, run.

@@ -108,7 +108,7 @@ pub fn prune(
 }
 
 /// [`prune`] with the feet of `scene`'s generators.
-fn prune_with(
+pub(crate) fn prune_with(
     complex: &mut VoronoiComplex,
     scene: &Scene,
     feet: &Feet,

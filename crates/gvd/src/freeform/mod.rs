@@ -140,7 +140,12 @@ pub fn compute_with(
                             // the ridge ends at the centre of curvature
                             return bisector::ridge_end(ca, t, cb, r, trimmer.tol);
                         }
-                        let p = bisector::normals_meet(ca, t, cb, r)?;
+                        // two lines: parallel ones have parallel normals all along
+                        let p = if ca.degree() == 1 && cb.degree() == 1 {
+                            bisector::equidistant_on_normal(ca, t, cb, r)?
+                        } else {
+                            bisector::normals_meet(ca, t, cb, r)?
+                        };
                         Some(Eval {
                             p,
                             d: 0.5 * (p.dist(ca.eval(t)) + p.dist(cb.eval(r))),
@@ -220,6 +225,7 @@ pub fn compute_with(
             ),
         });
     }
+    assemble::reach_corners(&pieces, &mut runs, 1e-7 * scale, trimmer.chord);
     let (mut complex, loose) = assemble::assemble(&pieces, &runs, 1e-7 * scale, trimmer.chord);
     if !pieces.featured {
         complex.cells = cells::build_cells(&complex, &domain, &|q: Point| {

@@ -583,7 +583,11 @@ pub fn pieces(scene: &Scene) -> Pieces {
 /// vertices): with `H = (X, Y, W)`, `κ = det(H, H', H'') W³ / |T|³`, `T = (X'W − XW',
 /// Y'W − YW')` (Farin02), so `κ' = 0` where
 /// `2 (det · W³)' |T|² − 3 det · W³ (|T|²)' = 0`, a polynomial isolated in Bernstein form.
+/// A line (degree 1) has none: its `κ` vanishes identically.
 pub fn curvature_extrema(c: &RationalBezier) -> Vec<f64> {
+    if c.degree() < 2 {
+        return Vec::new();
+    }
     let h = c.homogeneous();
     let coord = |k: usize| Bernstein1::exact(h.iter().map(|p| p[k]).collect());
     let (x, y, w) = (coord(0), coord(1), coord(2));

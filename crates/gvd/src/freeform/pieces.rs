@@ -75,12 +75,13 @@ pub struct Corner {
 }
 
 impl Corner {
-    /// True when `q` lies in the corner's normal cone (within `tol`): the points for
-    /// which the corner is the nearest point of its two spans (HREK07 §7.3, the bounding
-    /// normals of a tangent discontinuity).
-    pub fn sees(&self, q: Point, tol: f64) -> bool {
+    /// Whether `q` lies in each half-plane of the corner's normal cone, `⟨v, tin⟩ ≥ 0`
+    /// and `⟨v, tout⟩ ≤ 0` with `v = q − at` (within `tol`); in both, the corner is the
+    /// nearest point of its two spans (HREK07 §7.3, the bounding normals of a tangent
+    /// discontinuity).
+    pub fn halves(&self, q: Point, tol: f64) -> [bool; 2] {
         let v = q - self.at;
-        v.dot(self.tin) >= -tol && v.dot(self.tout) <= tol
+        [v.dot(self.tin) >= -tol, v.dot(self.tout) <= tol]
     }
 }
 

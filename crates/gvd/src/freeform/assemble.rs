@@ -153,7 +153,15 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
         if ridge_end {
             g.push(g[0]);
         }
-        if ridge_end || g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
+        // two edges of different pairs meeting (an edge whose generators change where it
+        // crosses a zone boundary, as at the normal of a span at the corner it ends at):
+        // a vertex of degree two
+        let change = members.len() == 2 && !boundary[c] && {
+            let (_, k0, _) = ends[members[0]];
+            let (_, k1, _) = ends[members[1]];
+            gens(&runs[k0]) != gens(&runs[k1])
+        };
+        if ridge_end || change || g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
             let at = members
                 .iter()
                 .map(|&i| ends[i].0)

@@ -9,7 +9,8 @@
 //! perpendicular bisector, for two spans of joined sites meeting without a corner their
 //! common normal at the joint; each branch is trimmed by the orientation and curvature
 //! constraints and the lower envelope ([`trim`]); the runs are assembled into the
-//! complex ([`assemble`]). Distances to the features are certified univariate root
+//! complex ([`assemble`]), those of two spans that stop by a corner generating nothing
+//! (the curve convex there) ending at a vertex on it. Lines are spans of degree 1. Distances to the features are certified univariate root
 //! isolations ([`nearest`]).
 //!
 //! A corner is *active* when its normal cone `{v : ⟨v, t_in⟩ ≥ 0, ⟨v, t_out⟩ ≤ 0}`

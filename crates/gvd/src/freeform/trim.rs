@@ -37,7 +37,7 @@ enum Status {
     /// Fails the orientation or curvature constraint, or could not be evaluated.
     Bad,
     /// Outside an active corner's normal cone: which of its two half-planes
-    /// ([`Corner::halves`]) hold the point.
+    /// ([`super::pieces::Corner::halves`]) hold the point.
     Cone([bool; 2]),
     /// This feature is nearer: the point is not on the envelope.
     Nearer(Feature),

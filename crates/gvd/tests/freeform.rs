@@ -215,8 +215,9 @@ fn nurbs_circles_agree_with_the_subdivision_circles() {
 
 /// A `medial_axis` diagram of a domain bounded by a chain of curves (given in order)
 /// against a dense sampling of them: its vertices and every `step`-th edge point lie
-/// inside, at equal distance (within epsilon) from their generators' curves, with no
-/// curve nearer, and a vertex's clearance (where set) is that distance.
+/// inside (or on a curve: a vertex at a corner), at equal distance (within epsilon) from
+/// their generators' curves, with no curve nearer, and a vertex's clearance (where set)
+/// is that distance.
 fn check_medial_axis_by_brute_force(sc: &Scene, d: &VoronoiComplex, step: usize) {
     assert_eq!(sc.mode(), Mode::MedialAxis);
     assert!(!d.edges.is_empty() && !d.vertices.is_empty());
@@ -224,8 +225,12 @@ fn check_medial_axis_by_brute_force(sc: &Scene, d: &VoronoiComplex, step: usize)
     let eps = sc.epsilon();
     // the distances to the generators' curves, and the nearest of all
     let check = |q: Point, sites: &[usize]| -> f64 {
-        assert!(inside_of(q, &curves), "{q:?} outside the domain");
         let dist: Vec<f64> = curves.iter().map(|c| poly_dist(q, c)).collect();
+        let on_curve = dist.iter().any(|&x| x < 1e-9 * eps);
+        assert!(
+            on_curve || inside_of(q, &curves),
+            "{q:?} outside the domain"
+        );
         let own: Vec<f64> = sites.iter().map(|&i| dist[i]).collect();
         let (lo, hi) = own
             .iter()
@@ -466,5 +471,232 @@ fn medial_axis_of_the_letter_o_read_from_svg() {
             "{q:?}"
         );
         assert!(to_counter > 50.0, "{q:?} {to_counter}");
+    }
+}
+
+/// The letter A of DejaVu Sans, its outline (a contour and a triangular counter) as
+/// pieces joined end to end: degree-1 Bézier sites, or one polygon.
+const GLYPH_A: [&[[f64; 2]]; 2] = [
+    &[
+        [586.0, 1493.0],
+        [815.0, 1493.0],
+        [1384.0, 0.0],
+        [1174.0, 0.0],
+        [1038.0, 383.0],
+        [365.0, 383.0],
+        [229.0, 0.0],
+        [16.0, 0.0],
+    ],
+    &[[700.0, 1294.0], [426.0, 551.0], [975.0, 551.0]],
+];
+
+fn glyph_a_scene(sites: &str) -> Scene {
+    Scene::from_json(&format!(
+        r#"{{"domain": [-133, -149, 1533, 1642], "epsilon": 1.79, "mode": "medial_axis",
+             "sites": [{sites}]}}"#
+    ))
+    .unwrap()
+}
+
+/// Every end of an edge that is no vertex lies at one of `joints` (the zone boundary of
+/// a joint without a corner starts there), or on the domain's boundary.
+fn no_loose_ends(sc: &Scene, d: &VoronoiComplex, joints: &[Point]) {
+    let domain = sc.domain();
+    for e in &d.edges {
+        for (v, p) in [(e.from, e.points[0]), (e.to, *e.points.last().unwrap())] {
+            let on_boundary = [p.x - domain.min.x, domain.max.x - p.x]
+                .into_iter()
+                .chain([p.y - domain.min.y, domain.max.y - p.y])
+                .any(|s| s.abs() < 1e-9 * domain.longest_side());
+            let at_joint = joints
+                .iter()
+                .any(|j| j.dist(p) < 1e-6 * domain.longest_side());
+            assert!(
+                v.is_some() || on_boundary || at_joint,
+                "edge {:?} ends loose at {p:?}",
+                e.sites
+            );
+        }
+    }
+}
+
+/// The outline of a letter of straight pieces as degree-1 Bézier sites, through the
+/// free-form engine (bisectors in parameter space), against the same outline as a
+/// polygon through the incremental engine (topology-oriented): the same vertices (the
+/// parallel bar and counter bottom share a bisector along which both normals are one
+/// line), and every edge of each within epsilon of the other's. At each of the six
+/// convex corners of the contour a vertex ends the axis.
+#[test]
+fn lines_as_degree_one_beziers_agree_with_the_incremental_polygon() {
+    let pieces: Vec<String> = GLYPH_A
+        .iter()
+        .flat_map(|ring| {
+            (0..ring.len()).map(move |k| {
+                let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
+                format!(r#"{{"kind": "bezier", "control_points": [{a:?}, {b:?}]}}"#)
+            })
+        })
+        .collect();
+    let ff_scene = glyph_a_scene(&pieces.join(", "));
+    let ff = run(&ff_scene, Engine::Freeform);
+    assert_eq!(ff.stats["engine"], "freeform");
+    let rings: Vec<String> = GLYPH_A.iter().map(|r| format!("{r:?}")).collect();
+    let polygon = format!(r#"{{"kind": "polygon", "rings": [{}]}}"#, rings.join(", "));
+    let inc = run(&glyph_a_scene(&polygon), Engine::Incremental);
+    let eps = ff_scene.epsilon();
+    assert_eq!(ff.vertices.len(), inc.vertices.len());
+    for v in &ff.vertices {
+        let near = inc.vertices.iter().map(|w| w.at.dist(v.at));
+        let d = near.fold(f64::INFINITY, f64::min);
+        assert!(d < 1e-3 * eps, "no incremental vertex at {:?} ({d})", v.at);
+    }
+    for (a, b) in [(&ff, &inc), (&inc, &ff)] {
+        for q in a.edges.iter().flat_map(|e| e.points.iter()) {
+            let d = b
+                .edges
+                .iter()
+                .map(|e| poly_dist(*q, &e.points))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d < eps, "{q:?} is {d} from the other diagram");
+        }
+    }
+    no_loose_ends(&ff_scene, &ff, &[]);
+    // (the two reflex corners, at the bar's ends, are generators)
+    for c in GLYPH_A[0].iter().filter(|c| c[1] != 383.0) {
+        let c = Point::new(c[0], c[1]);
+        assert!(ff.vertices.iter().any(|v| v.at == c), "no vertex at {c:?}");
+    }
+}
+
+/// The ends of the sites of a chain, where they join.
+fn joints(sc: &Scene) -> Vec<Point> {
+    sc.sites()
+        .iter()
+        .map(|s| match &s.kind {
+            SiteKind::Bezier { control_points, .. } => control_points[0],
+            k => panic!("{k:?}"),
+        })
+        .collect()
+}
+
+/// The joints of a chain where the tangent turns by more than `angle` (radians).
+fn corners(sc: &Scene, angle: f64) -> Vec<Point> {
+    let ends: Vec<(Point, Point, Point, Point)> = sc
+        .sites()
+        .iter()
+        .map(|s| match &s.kind {
+            SiteKind::Bezier {
+                control_points: c, ..
+            } => {
+                let n = c.len() - 1;
+                (c[0], c[1] - c[0], c[n], c[n] - c[n - 1])
+            }
+            k => panic!("{k:?}"),
+        })
+        .collect();
+    let unit = |v: Point| v * (1.0 / v.norm());
+    let mut out = Vec::new();
+    for &(at, t_out, ..) in &ends {
+        let Some(&(.., t_in)) = ends.iter().find(|e| e.2 == at) else {
+            continue;
+        };
+        if unit(t_in).dot(unit(t_out)) < angle.cos() {
+            out.push(at);
+        }
+    }
+    out
+}
+
+/// A corner where the axis arrives (convex) is a vertex; a reflex one is a generator of
+/// a vertex (corner 0 of a Bézier site is its start, corner 1 its end).
+fn corners_are_vertices_or_generators(sc: &Scene, d: &VoronoiComplex, corners: &[Point]) {
+    let tol = 1e-9 * sc.domain().longest_side();
+    let corner_at = |g: &gvd::complex::Generator| match *g {
+        gvd::complex::Generator::Feature {
+            site,
+            feature: gvd::complex::FeatureKind::Corner,
+            index,
+        } => match &sc.sites()[site].kind {
+            SiteKind::Bezier { control_points, .. } => {
+                Some(control_points[index * (control_points.len() - 1)])
+            }
+            k => panic!("{k:?}"),
+        },
+        _ => None,
+    };
+    for &c in corners {
+        let vertex = d.vertices.iter().any(|v| v.at.dist(c) < tol);
+        let generator = d
+            .vertices
+            .iter()
+            .flat_map(|v| v.sites.iter())
+            .any(|g| corner_at(g).is_some_and(|p| p.dist(c) < tol));
+        assert!(
+            vertex || generator,
+            "the corner {c:?} is neither a vertex nor a generator"
+        );
+    }
+}
+
+/// The letter g of DejaVu Sans read from the shipped SVG, whose outline mixes lines and
+/// quadratic pieces: one chain of Bézier sites per contour (lines of degree 1), its
+/// medial axis inside the ink and equidistant from its generators, with no loose end,
+/// a vertex at each convex corner and the reflex ones among the generators.
+#[test]
+fn medial_axis_of_the_letter_g_with_lines_read_from_svg() {
+    use gvd::io::{read_scene, Format, ReadOptions};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/glyph-g.svg");
+    let options = ReadOptions {
+        mode: Some(Mode::MedialAxis),
+        ..Default::default()
+    };
+    let (sc, warnings) = read_scene(&std::fs::read(path).unwrap(), Format::Svg, &options).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let degree = |s: &gvd::Site| match &s.kind {
+        SiteKind::Bezier { control_points, .. } => control_points.len() - 1,
+        k => panic!("{k:?}"),
+    };
+    let lines = sc.sites().iter().filter(|s| degree(s) == 1).count();
+    assert_eq!((sc.sites().len(), lines), (29, 5));
+    let d = run(&sc, Engine::Auto);
+    assert_eq!(d.stats["engine"], "freeform");
+    check_medial_axis_by_brute_force(&sc, &d, 2);
+    no_loose_ends(&sc, &d, &joints(&sc));
+    let sharp = corners(&sc, 0.1);
+    assert_eq!(sharp.len(), 6, "{sharp:?}");
+    corners_are_vertices_or_generators(&sc, &d, &sharp);
+}
+
+/// The glyph of 20 joined cubics with one control point moved off the tangent at a
+/// joint: a real corner there, convex or reflex. Convex, the axis reaches it along the
+/// bisector of its two pieces and ends at a vertex there; reflex, it is a point
+/// generator; either way no edge ends loose.
+#[test]
+fn a_corner_at_one_joint_of_a_chain() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/freeform/freeform-glyph20-medial_axis.json");
+    let base: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    // site 3's second control point moved along its last leg P₃ − P₂: its joint with
+    // site 2 turns, while its curvature at the far end, (2/3) |(P₁ − P₂) × (P₃ − P₂)| /
+    // |P₃ − P₂|³, stays as it was
+    for (s, convex) in [(0.4, true), (-0.4, false)] {
+        let mut v = base.clone();
+        let cp = |v: &serde_json::Value, k: usize, c: usize| {
+            v["sites"][3]["control_points"][k][c].as_f64().unwrap()
+        };
+        for c in 0..2 {
+            let moved = cp(&v, 1, c) + s * (cp(&v, 3, c) - cp(&v, 2, c));
+            v["sites"][3]["control_points"][1][c] = serde_json::json!(moved);
+        }
+        let sc = Scene::from_json(&v.to_string()).unwrap();
+        let d = run(&sc, Engine::Freeform);
+        check_medial_axis_by_brute_force(&sc, &d, 3);
+        no_loose_ends(&sc, &d, &joints(&sc));
+        let corner = joints(&sc)[3];
+        assert_eq!(corners(&sc, 1e-3), [corner]);
+        let at_corner = d.vertices.iter().any(|v| v.at.dist(corner) < 1e-9);
+        assert_eq!(at_corner, convex, "s {s}");
+        corners_are_vertices_or_generators(&sc, &d, &[corner]);
     }
 }

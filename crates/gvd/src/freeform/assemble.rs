@@ -8,12 +8,61 @@
 //! `F3`), or the several runs that locate one degenerate vertex, meet only up to the
 //! slivers next to a singular corner of `F3` that neither traces.
 
-use super::pieces::Pieces;
+use super::pieces::{Feature, Pieces};
 use super::trim::{End, Run};
 use crate::complex::{Edge, Generator, SmallVec, Vertex, VoronoiComplex};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::Point;
 use std::collections::HashMap;
+
+/// Ends the runs of two spans that stop (within `snap`) short of a corner where
+/// both spans end and that generates nothing (inactive: the curve is convex there, seen
+/// from the diagram's side) at that corner, a vertex of the corner and the two spans:
+/// the bisector of the two spans reaches the corner along its angle bisector (HREK07
+/// §7), but `F3` is singular at that corner of its square and the trace stops near it.
+pub fn reach_corners(pieces: &Pieces, runs: &mut [Run], tol: f64, snap: f64) {
+    let ends_at = |k: usize, p: Point| {
+        let c = &pieces.spans[k].curve;
+        c.eval(0.0).dist(p) <= tol || c.eval(1.0).dist(p) <= tol
+    };
+    for r in runs.iter_mut() {
+        let [Feature::Span(a), Feature::Span(b)] = r.pair else {
+            continue;
+        };
+        for which in [0, 1] {
+            // (past the corner the samples are outside, or nearer to one of the two)
+            let open = match r.ends[which] {
+                End::Open => true,
+                End::Vertex(h) => r.pair.contains(&h),
+                End::Boundary => false,
+            };
+            if !open {
+                continue;
+            }
+            let at = if which == 0 {
+                r.points[0]
+            } else {
+                *r.points.last().unwrap()
+            };
+            let Some(k) = (0..pieces.corners.len()).find(|&k| {
+                let c = &pieces.corners[k];
+                !c.active && c.at.dist(at) <= snap && ends_at(a, c.at) && ends_at(b, c.at)
+            }) else {
+                continue;
+            };
+            let c = pieces.corners[k].at;
+            if at.dist(c) <= tol {
+                let i = if which == 0 { 0 } else { r.points.len() - 1 };
+                r.points[i] = c;
+            } else if which == 0 {
+                r.points.insert(0, c);
+            } else {
+                r.points.push(c);
+            }
+            r.ends[which] = End::Vertex(Feature::Corner(k));
+        }
+    }
+}
 
 /// The complex of the runs, their ends clustered within `tol` (lone ends within
 /// `snap`); also returns the number of loose run ends (ends that meet nothing and are
@@ -105,7 +154,15 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
         if ridge_end {
             g.push(g[0]);
         }
-        if ridge_end || g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
+        // two edges of different pairs meeting (an edge whose generators change where it
+        // crosses a zone boundary, as at the normal of a span at the corner it ends at):
+        // a vertex of degree two
+        let change = members.len() == 2 && !boundary[c] && {
+            let (_, k0, _) = ends[members[0]];
+            let (_, k1, _) = ends[members[1]];
+            gens(&runs[k0]) != gens(&runs[k1])
+        };
+        if ridge_end || change || g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
             let at = members
                 .iter()
                 .map(|&i| ends[i].0)

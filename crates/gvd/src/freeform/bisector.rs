@@ -114,6 +114,28 @@ pub fn normals_meet(a: &RationalBezier, t: f64, b: &RationalBezier, r: f64) -> O
     solve2(d0, c0.dot(d0), d1, c1.dot(d1))
 }
 
+/// The point on the normal of `a` at `t` equidistant from `a(t)` and `b(r)`:
+/// `P = C₀ + s n̂` with `|P − C₀|² = |P − C₁|²`, i.e. `s = |C₁ − C₀|² / (2⟨n̂, C₁ − C₀⟩)`.
+/// At a zero of `F3` it is `P(t, r)` of eq. 5, and it stays well conditioned where the
+/// normals are parallel: for two parallel lines `F3 = 0` is the line of their common
+/// normals, along which eq. 5 is `0/0` and the bisector point is the feet's midpoint.
+/// `None` where `C₁ − C₀` is tangent to `a`.
+pub fn equidistant_on_normal(
+    a: &RationalBezier,
+    t: f64,
+    b: &RationalBezier,
+    r: f64,
+) -> Option<Point> {
+    let [c0, d0, _] = a.derivatives(t);
+    let v = b.eval(r) - c0;
+    let n = d0.perp() * (1.0 / d0.norm());
+    let h = n.dot(v);
+    if h.is_nan() || h.abs() <= 1e-14 * v.norm() {
+        return None;
+    }
+    Some(c0 + n * (0.5 * v.dot(v) / h))
+}
+
 /// The point/curve bisector point `B(t)` of corner `p` and span `c` (eqs. 27–29):
 /// `⟨B, C'⟩ = ⟨C, C'⟩`, `⟨B, C − p⟩ = (|C|² − |p|²)/2`; `None` at a pole.
 pub fn point_curve(c: &RationalBezier, t: f64, p: Point) -> Option<Point> {

@@ -9,7 +9,8 @@
 //! perpendicular bisector, for two spans of joined sites meeting without a corner their
 //! common normal at the joint; each branch is trimmed by the orientation and curvature
 //! constraints and the lower envelope ([`trim`]); the runs are assembled into the
-//! complex ([`assemble`]). Distances to the features are certified univariate root
+//! complex ([`assemble`]), those of two spans that stop by a corner generating nothing
+//! (the curve convex there) ending at a vertex on it. Lines are spans of degree 1. Distances to the features are certified univariate root
 //! isolations ([`nearest`]).
 //!
 //! A corner is *active* when its normal cone `{v : ⟨v, t_in⟩ ≥ 0, ⟨v, t_out⟩ ≤ 0}`
@@ -140,7 +141,12 @@ pub fn compute_with(
                             // the ridge ends at the centre of curvature
                             return bisector::ridge_end(ca, t, cb, r, trimmer.tol);
                         }
-                        let p = bisector::normals_meet(ca, t, cb, r)?;
+                        // two lines: parallel ones have parallel normals all along
+                        let p = if ca.degree() == 1 && cb.degree() == 1 {
+                            bisector::equidistant_on_normal(ca, t, cb, r)?
+                        } else {
+                            bisector::normals_meet(ca, t, cb, r)?
+                        };
                         Some(Eval {
                             p,
                             d: 0.5 * (p.dist(ca.eval(t)) + p.dist(cb.eval(r))),
@@ -220,6 +226,7 @@ pub fn compute_with(
             ),
         });
     }
+    assemble::reach_corners(&pieces, &mut runs, 1e-7 * scale, trimmer.chord);
     let (mut complex, loose) = assemble::assemble(&pieces, &runs, 1e-7 * scale, trimmer.chord);
     if !pieces.featured {
         complex.cells = cells::build_cells(&complex, &domain, &|q: Point| {

@@ -75,12 +75,13 @@ pub struct Corner {
 }
 
 impl Corner {
-    /// True when `q` lies in the corner's normal cone (within `tol`): the points for
-    /// which the corner is the nearest point of its two spans (HREK07 §7.3, the bounding
-    /// normals of a tangent discontinuity).
-    pub fn sees(&self, q: Point, tol: f64) -> bool {
+    /// Whether `q` lies in each half-plane of the corner's normal cone, `⟨v, tin⟩ ≥ 0`
+    /// and `⟨v, tout⟩ ≤ 0` with `v = q − at` (within `tol`); in both, the corner is the
+    /// nearest point of its two spans (HREK07 §7.3, the bounding normals of a tangent
+    /// discontinuity).
+    pub fn halves(&self, q: Point, tol: f64) -> [bool; 2] {
         let v = q - self.at;
-        v.dot(self.tin) >= -tol && v.dot(self.tout) <= tol
+        [v.dot(self.tin) >= -tol, v.dot(self.tout) <= tol]
     }
 }
 
@@ -583,7 +584,11 @@ pub fn pieces(scene: &Scene) -> Pieces {
 /// vertices): with `H = (X, Y, W)`, `κ = det(H, H', H'') W³ / |T|³`, `T = (X'W − XW',
 /// Y'W − YW')` (Farin02), so `κ' = 0` where
 /// `2 (det · W³)' |T|² − 3 det · W³ (|T|²)' = 0`, a polynomial isolated in Bernstein form.
+/// A line (degree 1) has none: its `κ` vanishes identically.
 pub fn curvature_extrema(c: &RationalBezier) -> Vec<f64> {
+    if c.degree() < 2 {
+        return Vec::new();
+    }
     let h = c.homogeneous();
     let coord = |k: usize| Bernstein1::exact(h.iter().map(|p| p[k]).collect());
     let (x, y, w) = (coord(0), coord(1), coord(2));

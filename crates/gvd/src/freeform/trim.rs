@@ -10,6 +10,8 @@
 
 use super::bisector::side_and_curvature;
 use super::nearest::Features;
+#[cfg(doc)]
+use super::pieces::Corner;
 use super::pieces::Feature;
 use crate::control::Watch;
 use crate::geom::{segment_distance, Aabb, Point};
@@ -34,6 +36,9 @@ enum Status {
     Out,
     /// Fails the orientation or curvature constraint, or could not be evaluated.
     Bad,
+    /// Outside an active corner's normal cone: which of its two half-planes
+    /// ([`super::pieces::Corner::halves`]) hold the point.
+    Cone([bool; 2]),
     /// This feature is nearer: the point is not on the envelope.
     Nearer(Feature),
 }
@@ -135,8 +140,14 @@ impl Trimmer<'_> {
                 }
                 Feature::Corner(i) => {
                     let c = &pieces.corners[i];
-                    if self.constraints.orientation && !(c.active && c.sees(e.p, self.tol)) {
-                        return Status::Bad;
+                    if self.constraints.orientation {
+                        if !c.active {
+                            return Status::Bad;
+                        }
+                        let halves = c.halves(e.p, self.tol);
+                        if halves != [true, true] {
+                            return Status::Cone(halves);
+                        }
                     }
                 }
             }
@@ -217,8 +228,16 @@ impl Trimmer<'_> {
             }
             (false, false) => {
                 // a valid stretch may hide between two invalid samples: look when the
-                // samples are inside and far apart, or straddle the domain
+                // samples are inside and far apart, or straddle the domain, or leave a
+                // corner's cone on its two sides (a thin cone, as of a slight corner,
+                // lies between them)
                 match (pa, pb) {
+                    (Some(x), Some(y))
+                        if matches!((a.status, b.status),
+                            (Status::Cone(u), Status::Cone(v)) if u != v) =>
+                    {
+                        x.dist(y) > 1e-12 * self.domain.longest_side() && wider(48)
+                    }
                     (Some(x), Some(y)) => {
                         let near = |p: Point| self.domain.outside_distance(p) < self.step;
                         (near(x) || near(y)) && x.dist(y) > self.step && wider(24)
@@ -275,7 +294,7 @@ impl Trimmer<'_> {
                 k += 1;
             }
             let end_of = |neighbour: Option<&Sample>| match neighbour.map(|s| s.status) {
-                None | Some(Status::Valid) | Some(Status::Bad) => End::Open,
+                None | Some(Status::Valid) | Some(Status::Bad) | Some(Status::Cone(_)) => End::Open,
                 Some(Status::Out) => End::Boundary,
                 Some(Status::Nearer(h)) => End::Vertex(h),
             };

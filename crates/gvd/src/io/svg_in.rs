@@ -3,12 +3,14 @@
 //! Shapes: `line` becomes a segment, `polyline` a polyline, `polygon` and `rect` a
 //! polygon (a rounded `rect` a closed path), `circle` and `ellipse` two half-circle arcs
 //! when drawn round (as DXF circles), else an `ellipse` site. A `path` (every command,
-//! absolute and relative) is read subpath by subpath: a closed subpath of straight
-//! pieces is a polygon; otherwise its straight runs are polylines (segments for one
-//! piece), `C`/`S` cubic and `Q`/`T` quadratic pieces `bezier` sites, and `A` pieces
-//! `arc` sites when drawn round, else rational quadratic `bezier` sites of at most a
-//! quarter turn each (a conic is exactly such a curve, weights `1, cos(δ/2), 1`;
-//! Farin02). `transform`s of the element and its ancestors (every SVG transform) are
+//! absolute and relative) is read subpath by subpath: `C`/`S` cubic and `Q`/`T`
+//! quadratic pieces are `bezier` sites, and `A` pieces `arc` sites when drawn round,
+//! else rational quadratic `bezier` sites of at most a quarter turn each (a conic is
+//! exactly such a curve, weights `1, cos(δ/2), 1`; Farin02). A subpath holding a
+//! `bezier` site (a glyph's outline) is one chain of `bezier` sites, its lines of
+//! degree 1 and its arcs rational quadratics, for the free-form engine; otherwise a
+//! closed subpath of straight pieces is a polygon, and straight runs are polylines
+//! (segments for one piece). `transform`s of the element and its ancestors (every SVG transform) are
 //! applied, exactly for points and control points; `y` is flipped so that the picture
 //! keeps its orientation with `y` up (the scene of a drawing we wrote reads back where
 //! it was). The element's `id` becomes the sites' id. Lengths take `px` and absolute
@@ -325,9 +327,22 @@ fn ellipse_sites(t: Affine, center: Point, radii: [f64; 2], phi: f64) -> Vec<Sit
     vec![Site::ellipse(c, [q + r, (q - r).abs()], beta)]
 }
 
-/// The sites of a curved piece mapped by `t` (straight pieces are handled by runs).
-fn curve_sites(t: Affine, piece: &Piece) -> Vec<Site> {
+/// True when `piece` mapped by `t` is read as a `bezier` site: a cubic or quadratic, or
+/// an arc that is not drawn round.
+fn is_bezier(t: Affine, piece: &Piece) -> bool {
     match *piece {
+        Piece::Line(..) => false,
+        Piece::Cubic(_) | Piece::Quad(_) => true,
+        Piece::Arc { center, phi, .. } => t.after_placing(center, phi).similarity().is_none(),
+    }
+}
+
+/// The sites of a piece mapped by `t`; with `beziers` every piece is a `bezier` site (a
+/// line of degree 1, an arc rational quadratics), else lines are segments and round
+/// arcs `arc` sites.
+fn curve_sites(t: Affine, piece: &Piece, beziers: bool) -> Vec<Site> {
+    match *piece {
+        Piece::Line(a, b) if beziers => vec![Site::bezier([t.apply(a), t.apply(b)], None)],
         Piece::Line(a, b) => vec![Site::segment(t.apply(a), t.apply(b))],
         Piece::Cubic(cp) => vec![Site::bezier(cp.map(|p| t.apply(p)), None)],
         Piece::Quad(cp) => vec![Site::bezier(cp.map(|p| t.apply(p)), None)],
@@ -339,7 +354,7 @@ fn curve_sites(t: Affine, piece: &Piece) -> Vec<Site> {
             sweep,
         } => {
             let m = t.after_placing(center, phi).scaled(radii[0], radii[1]);
-            if let Some((r, alpha, sigma)) = m.similarity() {
+            if let Some((r, alpha, sigma)) = m.similarity().filter(|_| !beziers) {
                 // the point of parameter θ is at angle α + σθ around the image centre
                 let (a, b) = (alpha + sigma * start, alpha + sigma * (start + sweep));
                 let (from, to) = if b > a { (a, b) } else { (b, a) };
@@ -361,8 +376,18 @@ fn curve_sites(t: Affine, piece: &Piece) -> Vec<Site> {
     }
 }
 
-/// The sites of a path's subpath mapped by `t`.
+/// The sites of a path's subpath mapped by `t`. A subpath that holds a `bezier` piece is
+/// one chain of `bezier` sites joined end to end (lines of degree 1), for the free-form
+/// engine; otherwise straight runs are polylines (segments for one piece) or, closed,
+/// a polygon.
 fn subpath_sites(t: Affine, pieces: &[Piece], closed: bool) -> Vec<Site> {
+    if pieces.iter().any(|p| is_bezier(t, p)) {
+        return pieces
+            .iter()
+            .filter(|p| !matches!(p, Piece::Line(a, b) if t.apply(*a) == t.apply(*b)))
+            .flat_map(|p| curve_sites(t, p, true))
+            .collect();
+    }
     let straight = pieces.iter().all(|p| matches!(p, Piece::Line(..)));
     if closed && straight {
         let mut ring: Vec<Point> = pieces
@@ -402,7 +427,7 @@ fn subpath_sites(t: Affine, pieces: &[Piece], closed: bool) -> Vec<Site> {
             }
             _ => {
                 flush(&mut run, &mut out);
-                out.extend(curve_sites(t, piece));
+                out.extend(curve_sites(t, piece, false));
             }
         }
     }
@@ -721,6 +746,45 @@ mod tests {
             for p in bez.sample(16) {
                 let e = ((p.x - 4.0) / 4.0).powi(2) + ((p.y + 40.0) / 2.0).powi(2);
                 assert!((e - 1.0).abs() < 1e-12, "{p:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_subpath_with_curves_is_one_chain_of_beziers() {
+        // a line, a cubic, a round half circle and the closing line: four kinds of piece
+        // in one outline, read as bezier sites joined end to end (lines of degree 1, the
+        // arc two rational quarters on its circle); a path of lines and a round arc only
+        // keeps its segments and arc
+        let (s, _) = read(
+            r#"<svg><path d="M0 0 L10 0 C12 0 12 -10 10 -10 A5 5 0 0 0 0 -10 Z"/>
+                    <path d="M20 0 L30 0 A5 5 0 0 0 40 0"/></svg>"#,
+        )
+        .unwrap();
+        let kinds: Vec<&str> = s.sites().iter().map(|x| x.kind.name()).collect();
+        assert_eq!(
+            kinds,
+            ["bezier", "bezier", "bezier", "bezier", "bezier", "segment", "arc"]
+        );
+        let curves: Vec<crate::geom::bezier::RationalBezier> = s.sites()[..5]
+            .iter()
+            .map(|site| match &site.kind {
+                SiteKind::Bezier {
+                    control_points,
+                    weights,
+                } => crate::geom::bezier::RationalBezier::new(control_points, weights.as_deref()),
+                k => panic!("{k:?}"),
+            })
+            .collect();
+        let degrees: Vec<usize> = curves.iter().map(|c| c.degree()).collect();
+        assert_eq!(degrees, [1, 3, 2, 2, 1]);
+        for k in 0..5 {
+            let next = &curves[(k + 1) % 5];
+            assert!(close(curves[k].eval(1.0), next.eval(0.0)), "joint {k}");
+        }
+        for c in &curves[2..4] {
+            for p in c.sample(16) {
+                assert!((p.dist(Point::new(5.0, 10.0)) - 5.0).abs() < 1e-12, "{p:?}");
             }
         }
     }

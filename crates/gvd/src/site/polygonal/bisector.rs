@@ -28,14 +28,16 @@ fn squared_along(shape: Shape, p: Point, d: Point) -> Quadratic {
 }
 
 /// The real roots of `A t² + B t + C` (a linear or constant one when `A` vanishes
-/// against the others), by the cancellation-free formula.
-fn roots(q: Quadratic, scale: f64) -> SmallVec<[f64; 2]> {
+/// against the others), by the cancellation-free formula. The coefficients are squared
+/// lengths (`t` of order one spans at most `length`): `A` vanishes below
+/// `1e-13·max(|A|, |B|, |C|, length²)`.
+fn roots(q: Quadratic, length: f64) -> SmallVec<[f64; 2]> {
     let [a, b, c] = q;
     let size = a.abs().max(b.abs()).max(c.abs());
     if size == 0.0 {
         return SmallVec::new();
     }
-    if a.abs() <= 1e-13 * size.max(scale * scale) {
+    if a.abs() <= 1e-13 * size.max(length * length) {
         if b.abs() <= 1e-14 * size {
             return SmallVec::new();
         }
@@ -70,8 +72,7 @@ impl Polygonal {
             squared_along(self.shape(f), from, d),
             squared_along(self.shape(g), from, d),
         );
-        let scale = self.scale.max(d.norm());
-        let mut out = roots(q, scale * scale);
+        let mut out = roots(q, self.scale.max(d.norm()));
         out.retain(|t| (0.0..=1.0).contains(t));
         out
     }
@@ -134,12 +135,15 @@ impl Polygonal {
         };
         let mut out = SmallVec::new();
         for (p, d) in self.bisector_lines(f, g) {
+            // the direction at the domain's length, so that `t` of order one spans the
+            // domain and the quadratic's coefficients are squared lengths, compared with
+            // the squared domain size (as in [`Polygonal::crossings`])
+            let d = d * (self.scale / d.norm());
             let q = minus(
                 squared_along(self.shape(f), p, d),
                 squared_along(self.shape(h), p, d),
             );
-            let s = self.scale * self.scale * d.dot(d);
-            for t in roots(q, s) {
+            for t in roots(q, self.scale) {
                 out.push(p + d * t);
             }
         }

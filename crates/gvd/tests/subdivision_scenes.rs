@@ -135,3 +135,41 @@ fn epsilon_below_f64_resolution_is_floored_not_hung() {
     .unwrap();
     assert!(report.passed, "{}", report.summary_line());
 }
+
+/// Whether a polyline goes out and comes back along itself (its `i`-th point from
+/// either end agree within `tol`).
+fn retraces(points: &[gvd::Point], tol: f64) -> bool {
+    let n = points.len();
+    (0..n / 2).all(|i| points[i].dist(points[n - 1 - i]) <= tol)
+}
+
+/// No edge goes out from a point and back along itself: four mutually tangent circles
+/// (Shou et al.'s fourth example) once gave eight such spikes beside the four edges of
+/// the centre (uncertified boxes at the tangencies linked a piece to its own return),
+/// and 800 anisotropic points gave one.
+#[test]
+fn no_edge_retraces_itself() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/algebraic/shou-ex4-four-circles.json");
+    let tangent = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for (what, s) in [
+        ("four tangent circles", tangent),
+        (
+            "800 anisotropic points",
+            scene("points-anisotropic-0800.json"),
+        ),
+    ] {
+        let d = compute(&s, &Options::default()).unwrap();
+        for e in &d.edges {
+            assert!(
+                !(e.from == e.to && retraces(&e.points, s.epsilon())),
+                "{what}: edge {:?} from {:?} retraces itself: {:?}",
+                e.sites,
+                e.from,
+                e.points
+            );
+        }
+        let report = verify(&s, &d, &VerifyOptions::default()).unwrap();
+        assert!(report.passed, "{what}: {}", report.summary_line());
+    }
+}

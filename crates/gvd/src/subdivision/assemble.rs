@@ -194,7 +194,7 @@ fn build_complex(
             }
         }
         let points = simplify(&c.points, tol, c.closed);
-        if points.len() < 2 {
+        if points.len() < 2 || (ends[0] == ends[1] && retraces(&points, merge_len)) {
             continue;
         }
         out.edges.push(Edge {
@@ -211,6 +211,15 @@ fn build_complex(
         });
     }
     out
+}
+
+/// Whether a polyline goes out and comes back along itself within `tol` (its `i`-th
+/// point from either end agree): a spike of no extent between two ends that are one,
+/// left where uncertified boxes at a tangency of two sites link a piece to its own
+/// return (two tangent circles of Shou et al.'s fourth example).
+fn retraces(points: &[Point], tol: f64) -> bool {
+    let n = points.len();
+    (0..n / 2).all(|i| points[i].dist(points[n - 1 - i]) <= tol)
 }
 
 fn length(points: &[Point]) -> f64 {

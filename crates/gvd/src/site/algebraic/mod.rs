@@ -19,9 +19,12 @@
 //!   system.
 //! * **Special points** ([`special`]): singular points by the 2-D certified solver,
 //!   tangential contacts with the clip box; counted in [`AlgebraicField::stats`].
+//! * **Medial axis** ([`medial`]): a closed smooth curve cut at its vertices into arcs
+//!   of monotone curvature, each a field of its own.
 
 mod dense;
 mod enclosure;
+pub mod medial;
 mod nearest;
 mod special;
 
@@ -122,6 +125,11 @@ impl AlgebraicField {
             "singular_clusters": self.special.singular_clusters,
             "clip_contacts": self.special.clip_contacts,
         })
+    }
+
+    /// A point of the curve nearest to `q` (`None` for a curve with no sample).
+    pub fn foot(&self, q: Point) -> Option<Point> {
+        self.nearest(q, None).map(|n| n.foot)
     }
 
     /// The nodes of `from` (and their descendants) that may hold a nearest point for a

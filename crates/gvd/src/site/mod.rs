@@ -234,7 +234,7 @@ pub struct MedialFields {
     /// The site of each field.
     pub owners: Vec<usize>,
     /// The ends of each field's piece (none for a whole site).
-    pub ends: Vec<Vec<Point>>,
+    pub ends: Vec<Vec<algebraic::medial::End>>,
     /// The regions the algebraic curves bound.
     pub regions: Vec<algebraic::medial::Region>,
 }
@@ -252,7 +252,8 @@ impl MedialFields {
             if let SiteKind::Algebraic { equation, clip } = &s.kind {
                 let clip = clip.unwrap_or(scene.domain());
                 let pieces = algebraic::medial::pieces(i, equation.poly(), clip, scene.epsilon())?;
-                out.owners.extend(std::iter::repeat_n(i, pieces.fields.len()));
+                out.owners
+                    .extend(std::iter::repeat_n(i, pieces.fields.len()));
                 out.ends.extend(pieces.ends.iter().map(|e| e.to_vec()));
                 out.fields.extend(
                     pieces

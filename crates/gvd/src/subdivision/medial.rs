@@ -3,32 +3,24 @@
 //! ([`MedialFields`]: each closed curve cut at its vertices into arcs with no ridge of
 //! their own), restricted to the regions the curves bound (even-odd), and rid of the
 //! zone boundaries between pieces of one site: the points whose nearest point on both
-//! pieces is their shared end. What remains are the points whose distance to the curve
-//! is reached at two distinct points, the medial axis. Its generators are
-//! the sites (a ridge of one curve lists that curve twice, as does a ridge's end at a
-//! centre of curvature).
+//! pieces is their shared end (within the resolution of the normal there, up to the
+//! centre of curvature: [`End`](crate::site::algebraic::medial::End)). What remains are the points whose distance to the
+//! curve is reached at two distinct points, the medial axis. A curve's generator is its
+//! one C1 piece (a ridge lists it twice, as does a ridge's end at a centre of curvature).
 
 use super::{run_watched, Output, Params};
 use crate::complex::prune::keep_passing;
-use crate::complex::{Edge, Generator, VoronoiComplex};
+use crate::complex::{Edge, FeatureKind, Generator, VoronoiComplex};
 use crate::control::Watch;
 use crate::error::Error;
 use crate::geom::Point;
 use crate::scene::Scene;
-use crate::site::{DistanceField, FieldOptions, MedialFields};
+use crate::site::{FieldOptions, MedialFields};
 use serde_json::json;
 
 /// Ends of two pieces within this fraction of the domain's size are their shared end
 /// (each piece computes it to about 1e-15 of its box).
 const SHARED_END: f64 = 1e-9;
-
-/// A point `q` lies on the zone boundary of two pieces that share the end `e` where both
-/// are no nearer than `e`, to this fraction of the domain's size: `min(d_a, d_b) ≥
-/// |q − e| − τ`. Beside a ridge's end at the centre of curvature of a vertex, with feet
-/// `±s` from it, the ridge's points are nearer by about `κ's²` than `e`, so the ridge is cut
-/// about `√τ` (3e-5 of the domain) short of its end; the distances come from feet
-/// refined by Newton's method (or samples where the distance is flat), far below `τ`.
-const ZONE: f64 = 1e-9;
 
 /// Computes the medial axis of `scene` (mode `medial_axis`, sites the subdivision
 /// engine takes, among them algebraic curves).
@@ -41,24 +33,22 @@ pub(crate) fn run(
     let m = MedialFields::for_scene(scene, field_options)?;
     let mut out = run_watched(&m.fields, params, watch)?;
     let size = params.domain.longest_side();
+    let resolution = out.complex.stats["resolution"]
+        .as_f64()
+        .unwrap_or(params.epsilon);
     let inside = |q: Point| m.regions.iter().filter(|r| r.contains(q)).count() % 2 == 1;
     let passes = |e: &Edge, q: Point| {
-        if !inside(q) {
-            return false;
-        }
         let [a, b] = e.sites.map(|g| g.site());
-        if m.owners[a] != m.owners[b] {
-            return true;
-        }
-        let near = m.fields[a].value(q).min(m.fields[b].value(q)) + ZONE * size;
-        !m.ends[a].iter().any(|&end| {
-            m.ends[b].iter().any(|&other| end.dist(other) <= SHARED_END * size)
-                && near >= q.dist(end)
-        })
+        inside(q)
+            && !m.ends[a].iter().any(|end| {
+                m.ends[b]
+                    .iter()
+                    .any(|other| end.at.dist(other.at) <= SHARED_END * size)
+                    && end.zone_holds(q, resolution)
+            })
     };
-    let resolution = out.complex.stats["resolution"].as_f64().unwrap_or(params.epsilon);
     keep_passing(&mut out.complex, &passes, resolution / 4.0, &|_, _| None);
-    name_sites(&mut out.complex, &m.owners);
+    name_sites(&mut out.complex, &m);
     out.complex.cells.clear();
     out.complex
         .stats
@@ -66,10 +56,23 @@ pub(crate) fn run(
     Ok(out)
 }
 
-/// Replaces each generator (a field's index) by its site's, dropping the generator
-/// changes along an edge that no longer change anything.
-fn name_sites(complex: &mut VoronoiComplex, owners: &[usize]) {
-    let site = |g: &mut Generator| *g = Generator::Site(owners[g.site()]);
+/// Replaces each generator (a field's index) by what it stands for: a piece of an
+/// algebraic curve by the curve's one piece (`{"site": i, "feature": "piece", "index":
+/// 0}`: a smooth curve is one C1 piece), another field by its site; and drops the
+/// generator changes along an edge that no longer change anything.
+fn name_sites(complex: &mut VoronoiComplex, m: &MedialFields) {
+    let site = |g: &mut Generator| {
+        let k = g.site();
+        *g = if m.ends[k].is_empty() {
+            Generator::Site(m.owners[k])
+        } else {
+            Generator::Feature {
+                site: m.owners[k],
+                feature: FeatureKind::Piece,
+                index: 0,
+            }
+        };
+    };
     for v in &mut complex.vertices {
         v.sites.iter_mut().for_each(site);
     }

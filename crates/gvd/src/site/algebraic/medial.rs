@@ -36,9 +36,32 @@ pub struct Pieces {
     /// The pieces' distance fields, one arc of monotone curvature each.
     pub fields: Vec<AlgebraicField>,
     /// The two ends of each piece (where it crosses its clip box's sides).
-    pub ends: Vec<[Point; 2]>,
+    pub ends: Vec<[End; 2]>,
     /// The region inside the curve.
     pub region: Region,
+}
+
+/// An end of a piece, shared with the next piece of the curve. The points whose nearest
+/// point on both pieces is the end form the *zone boundary* of the two: the inward
+/// normal there, out to the centre of curvature `at + ρ·inward`, `ρ = 1/κ` (where
+/// the end stops being a local nearest point; without end where the curve bends away
+/// from the region) or to where a third piece is nearer. It belongs to the diagram of
+/// the pieces, not to the medial axis; beyond the centre of curvature of a vertex, the
+/// same normal carries the ridge that ends there.
+#[derive(Clone, Copy, Debug)]
+pub struct End {
+    /// The point.
+    pub at: Point,
+    inward: Point,
+    focal: f64,
+}
+
+impl End {
+    /// Whether `q` lies within `slop` of the zone boundary at this end (see [`End`]).
+    pub fn zone_holds(&self, q: Point, slop: f64) -> bool {
+        let d = q - self.at;
+        d.cross(self.inward).abs() <= slop && d.dot(self.inward) <= self.focal
+    }
 }
 
 /// The region a closed smooth curve bounds by the even-odd rule: `f` changes sign across
@@ -98,7 +121,7 @@ pub fn pieces(site: usize, f: &Poly, clip: Aabb, resolution: f64) -> Result<Piec
         min_size: 1e-9 * clip.longest_side(),
         max_boxes: 1 << 16,
     };
-    let (fx, fy) = (f.partial(0), f.partial(1));
+    let jet = Jet::new(f);
     let mut cuts = [vec![clip.min.x, clip.max.x], vec![clip.min.y, clip.max.y]];
     for root in roots::solve_system(f, &curvature_derivative(f), &[], &clip, &opts) {
         let p = root.point;
@@ -110,7 +133,7 @@ pub fn pieces(site: usize, f: &Poly, clip: Aabb, resolution: f64) -> Result<Piec
                 p.x, p.y
             )));
         }
-        let (gx, gy) = (fx.eval(p.x, p.y, 0.0), fy.eval(p.x, p.y, 0.0));
+        let (gx, gy) = (jet.fx.eval(p.x, p.y), jet.fy.eval(p.x, p.y));
         if gy.abs() >= gx.abs() {
             cuts[0].push(p.x);
         } else {
@@ -121,7 +144,6 @@ pub fn pieces(site: usize, f: &Poly, clip: Aabb, resolution: f64) -> Result<Piec
         c.sort_by(f64::total_cmp);
         c.dedup();
     }
-    let jet = Jet::new(f);
     let mut boxes = Vec::new();
     for x in cuts[0].windows(2) {
         for y in cuts[1].windows(2) {
@@ -139,9 +161,10 @@ pub fn pieces(site: usize, f: &Poly, clip: Aabb, resolution: f64) -> Result<Piec
         .iter()
         .map(|b| AlgebraicField::new(site, f, b.0, resolution))
         .collect::<Result<_, _>>()?;
+    let end = |at: Point| end(&jet, outside, at);
     Ok(Pieces {
         fields,
-        ends: boxes.into_iter().map(|b| b.1).collect(),
+        ends: boxes.into_iter().map(|b| b.1.map(end)).collect(),
         region: Region {
             f: f.clone(),
             outside,
@@ -224,6 +247,30 @@ fn crossings(form: &Bernstein2, b: &Aabb) -> Option<Vec<Point>> {
         }
     }
     Some(out)
+}
+
+/// The end `at` of a piece, its inward normal `−s ∇f/|∇f|` (`s` the sign of `f`
+/// outside) and its radius of curvature towards it: the curvature vector of `{f = 0}`
+/// is `−(tᵀ H t / |∇f|) ∇f/|∇f|` (`t` the unit tangent, `H` the Hessian of `f`), so the
+/// curvature towards the inside is `κ = s·tᵀ H t / |∇f|`.
+fn end(jet: &Jet, outside: f64, at: Point) -> End {
+    let (x, y) = (at.x, at.y);
+    let g = Point::new(jet.fx.eval(x, y), jet.fy.eval(x, y));
+    let unit = g * (1.0 / g.norm());
+    let t = unit.perp();
+    let bend = t.x * t.x * jet.fxx.eval(x, y)
+        + 2.0 * t.x * t.y * jet.fxy.eval(x, y)
+        + t.y * t.y * jet.fyy.eval(x, y);
+    let kappa = outside * bend / g.norm();
+    End {
+        at,
+        inward: unit * -outside,
+        focal: if kappa > 0.0 {
+            1.0 / kappa
+        } else {
+            f64::INFINITY
+        },
+    }
 }
 
 /// `V = 2 G (∇N · T) − 3 N (∇G · T)`, which has the sign of `dκ/ds` along

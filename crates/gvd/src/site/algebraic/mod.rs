@@ -127,11 +127,6 @@ impl AlgebraicField {
         })
     }
 
-    /// A point of the curve nearest to `q` (`None` for a curve with no sample).
-    pub fn foot(&self, q: Point) -> Option<Point> {
-        self.nearest(q, None).map(|n| n.foot)
-    }
-
     /// The nodes of `from` (and their descendants) that may hold a nearest point for a
     /// point of `b`, and the bounds they give.
     fn refine(&self, b: &Aabb, from: &[u32]) -> AlgebraicState {

@@ -1,8 +1,8 @@
 //! A closed smooth curve `{f = 0}` inside its clip box, cut into pieces for its medial
-//! axis (Shou et al. 2011 compute it from curve pixels; here from certified pieces).
+//! axis (SYMW11 compute it from curve pixels; here from certified pieces).
 //!
 //! An arc whose curvature is strictly monotone has nested osculating circles
-//! (Tait–Kneser, [GTT13]), so no disc touches it twice from one side: every point of
+//! (Tait–Kneser; GTT13), so no disc touches it twice from one side: every point of
 //! the medial axis has its two nearest points on two different such arcs. The curve is
 //! cut at its *vertices*, the zeros of `dκ/ds`: with `T = (−f_y, f_x)`, `G = |∇f|²` and
 //! `N = f_xx f_y² − 2 f_xy f_x f_y + f_yy f_x²` (so `κ = N / G^{3/2}`),

@@ -33,8 +33,11 @@ pub(crate) fn run(
     let m = MedialFields::for_scene(scene, field_options)?;
     let mut out = run_watched(&m.fields, params, watch)?;
     let size = params.domain.longest_side();
-    let resolution = out.complex.stats["resolution"]
-        .as_f64()
+    let resolution = out
+        .complex
+        .stats
+        .get("resolution")
+        .and_then(|v| v.as_f64())
         .unwrap_or(params.epsilon);
     let inside = |q: Point| m.regions.iter().filter(|r| r.contains(q)).count() % 2 == 1;
     let passes = |e: &Edge, q: Point| {

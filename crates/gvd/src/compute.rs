@@ -250,19 +250,6 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
             boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
         });
     }
-    if scene.mode() == Mode::MedialAxis {
-        if let Some(i) = scene
-            .sites()
-            .iter()
-            .position(|s| matches!(s.kind, SiteKind::Algebraic { .. }))
-        {
-            return Err(Error::Unsupported {
-                site: i,
-                kind: "algebraic".into(),
-                message: "medial_axis mode is not computed for algebraic curves yet".into(),
-            });
-        }
-    }
     scene.refuse_near_coincident_points()?;
     let params = subdivision::Params::for_scene(
         scene,

@@ -122,17 +122,41 @@ pub(crate) fn prune_with(
         });
     }
     let counts_before = (complex.edges.len(), complex.vertices.len());
-    let tolerance = scene.epsilon() / 4.0;
     let with_clearance = scene.mode() != Mode::Voronoi;
+    let clearance = |sites: &[Generator; 2], q: Point| {
+        Some(feet.generators_clearance(sites, q)).filter(|r| with_clearance && r.is_finite())
+    };
+    let passes = |e: &Edge, q: Point| {
+        let f = e.sites.map(|g| feet.foot(&g, q).unwrap_or(q));
+        pruning.keeps(q, f[0], f[1])
+    };
+    let (cut_ends, merged_vertices) =
+        keep_passing(complex, &passes, scene.epsilon() / 4.0, &clearance);
+    Ok(PruneCounts {
+        edges_before: counts_before.0,
+        vertices_before: counts_before.1,
+        cut_ends,
+        merged_vertices,
+    })
+}
+
+/// Keeps the runs of each edge's polyline whose points pass (`passes(edge, q)`), and
+/// mends the graph as the module notes say: each cut end becomes a vertex of degree one
+/// listing the edge's generators, with `clearance(generators, point)`; the clearances of
+/// the kept points are recomputed where the edge carried them; vertices left with no
+/// edge go, and those of degree two are merged away. Returns the numbers of cut ends and
+/// of merged vertices.
+pub(crate) fn keep_passing(
+    complex: &mut VoronoiComplex,
+    passes: &dyn Fn(&Edge, Point) -> bool,
+    tolerance: f64,
+    clearance: &dyn Fn(&[Generator; 2], Point) -> Option<f64>,
+) -> (usize, usize) {
     let mut vertices = std::mem::take(&mut complex.vertices);
     let mut edges = Vec::with_capacity(complex.edges.len());
     let mut cut_ends = 0;
     for e in std::mem::take(&mut complex.edges) {
-        let passes = |q: Point| {
-            let f = e.sites.map(|g| feet.foot(&g, q).unwrap_or(q));
-            pruning.keeps(q, f[0], f[1])
-        };
-        for run in passing_runs(&e, &passes, tolerance) {
+        for run in passing_runs(&e, &|q| passes(&e, q), tolerance) {
             let mut end_vertex = |cut: bool, at: Point, old: Option<usize>| {
                 if !cut {
                     return old;
@@ -141,8 +165,7 @@ pub(crate) fn prune_with(
                 vertices.push(Vertex {
                     at,
                     sites: e.sites.iter().copied().collect(),
-                    clearance: Some(feet.generators_clearance(&e.sites, at))
-                        .filter(|r| with_clearance && r.is_finite()),
+                    clearance: clearance(&e.sites, at),
                 });
                 Some(vertices.len() - 1)
             };
@@ -152,12 +175,12 @@ pub(crate) fn prune_with(
                 *run.points.last().unwrap_or(&run.points[0]),
                 e.to,
             );
-            let clearance = if e.clearance.is_empty() {
+            let radii = if e.clearance.is_empty() {
                 Vec::new()
             } else {
                 run.points
                     .iter()
-                    .map(|&q| feet.generators_clearance(&e.sites, q))
+                    .map(|&q| clearance(&e.sites, q).unwrap_or(f64::NAN))
                     .collect()
             };
             edges.push(Edge {
@@ -166,7 +189,7 @@ pub(crate) fn prune_with(
                 to,
                 points: run.points.into(),
                 bisector: Vec::new(),
-                clearance,
+                clearance: radii,
                 sites_along: Vec::new(),
             });
         }
@@ -175,12 +198,7 @@ pub(crate) fn prune_with(
     complex.edges = edges;
     complex.vertices = vertices;
     complex.drop_unused_vertices();
-    Ok(PruneCounts {
-        edges_before: counts_before.0,
-        vertices_before: counts_before.1,
-        cut_ends,
-        merged_vertices,
-    })
+    (cut_ends, merged_vertices)
 }
 
 /// Refuses a generator whose feet are not known, naming its site.

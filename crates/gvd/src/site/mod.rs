@@ -225,6 +225,55 @@ impl SiteField {
     }
 }
 
+/// The fields of a `medial_axis` scene: each algebraic curve as its pieces
+/// ([`algebraic::medial::pieces`]), every other site as in
+/// [`SiteField::for_scene_with`].
+pub struct MedialFields {
+    /// The fields, the pieces of one curve in a row.
+    pub fields: Vec<SiteField>,
+    /// The site of each field.
+    pub owners: Vec<usize>,
+    /// The ends of each field's piece (none for a whole site).
+    pub ends: Vec<Vec<algebraic::medial::End>>,
+    /// The regions the algebraic curves bound.
+    pub regions: Vec<algebraic::medial::Region>,
+}
+
+impl MedialFields {
+    /// The fields of `scene` in `medial_axis` mode.
+    pub fn for_scene(scene: &Scene, options: &FieldOptions) -> Result<MedialFields, Error> {
+        let mut out = MedialFields {
+            fields: Vec::new(),
+            owners: Vec::new(),
+            ends: Vec::new(),
+            regions: Vec::new(),
+        };
+        for (i, s) in scene.sites().iter().enumerate() {
+            if let SiteKind::Algebraic { equation, clip } = &s.kind {
+                let clip = clip.unwrap_or(scene.domain());
+                let pieces = algebraic::medial::pieces(i, equation.poly(), clip, scene.epsilon())?;
+                out.owners
+                    .extend(std::iter::repeat_n(i, pieces.fields.len()));
+                out.ends.extend(pieces.ends.iter().map(|e| e.to_vec()));
+                out.fields.extend(
+                    pieces
+                        .fields
+                        .into_iter()
+                        .map(|f| SiteField::Algebraic(Box::new(f))),
+                );
+                out.regions.push(pieces.region);
+            } else {
+                let field =
+                    SiteField::from_site_at(i, &s.kind, &scene.domain(), scene.epsilon(), options)?;
+                out.fields.push(field);
+                out.owners.push(i);
+                out.ends.push(Vec::new());
+            }
+        }
+        Ok(out)
+    }
+}
+
 /// [`DistanceField`] for [`SiteField`], delegating to each family: `$variant` names
 /// both a [`SiteField`] and its [`FieldState`]. A state of another family (never made
 /// by the engine) is replaced by a fresh one for the box.

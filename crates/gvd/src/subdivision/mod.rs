@@ -6,6 +6,7 @@ mod assemble;
 mod budget;
 mod filter;
 mod locate;
+mod medial;
 mod resolve;
 mod segments;
 pub mod soft;
@@ -64,13 +65,17 @@ impl Params {
 /// beyond about `2^±200` for distances, `2^±50` for lp4) is computed at an exact
 /// power-of-two scale where its largest coordinate is about 1, and its diagram and
 /// boxes scaled back (`stats.rescaled_by` gives the factor used): the same diagram,
-/// scaled, as the scene at unit scale. `watch` stops the run early.
+/// scaled, as the scene at unit scale. `watch` stops the run early. In `medial_axis`
+/// mode the diagram is that of [`medial`] (unscaled).
 pub(crate) fn run_scene(
     scene: &Scene,
     field_options: &FieldOptions,
     params: &Params,
     watch: &Watch,
 ) -> Result<Output, Error> {
+    if scene.mode() == crate::scene::Mode::MedialAxis {
+        return medial::run(scene, field_options, params, watch);
+    }
     let rounded = round_ellipses_as_circles(scene);
     let scene = rounded.as_ref().unwrap_or(scene);
     check_polynomial_precision(scene)?;

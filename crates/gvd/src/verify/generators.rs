@@ -178,11 +178,20 @@ impl Gens {
         };
         for (i, site) in scene.sites().iter().enumerate() {
             let kind = &site.kind;
-            if scene.mode() == Mode::MedialAxis && matches!(kind, SiteKind::Ellipse { .. }) {
+            if scene.mode() == Mode::MedialAxis
+                && matches!(kind, SiteKind::Ellipse { .. } | SiteKind::Algebraic { .. })
+            {
                 return Err(Error::Unsupported {
                     site: i,
                     kind: kind.name().to_string(),
-                    message: "the checker cannot evaluate an ellipse's medial axis yet".into(),
+                    message: format!(
+                        "the checker cannot evaluate an {}'s medial axis yet",
+                        if matches!(kind, SiteKind::Ellipse { .. }) {
+                            "ellipse"
+                        } else {
+                            "algebraic curve"
+                        }
+                    ),
                 });
             }
             if featured {

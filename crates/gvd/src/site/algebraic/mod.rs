@@ -19,9 +19,12 @@
 //!   system.
 //! * **Special points** ([`special`]): singular points by the 2-D certified solver,
 //!   tangential contacts with the clip box; counted in [`AlgebraicField::stats`].
+//! * **Medial axis** ([`medial`]): a closed smooth curve cut at its vertices into arcs
+//!   of monotone curvature, each a field of its own.
 
 mod dense;
 mod enclosure;
+pub mod medial;
 mod nearest;
 mod special;
 

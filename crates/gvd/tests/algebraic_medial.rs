@@ -45,15 +45,30 @@ fn superellipse(t: f64) -> Point {
     Point::new(r * t.cos(), r * t.sin())
 }
 
-/// The degree of every vertex.
-fn degrees(d: &VoronoiComplex) -> Vec<usize> {
+/// The ends of the ridges: the vertices of degree one.
+fn ridge_ends(d: &VoronoiComplex) -> Vec<Point> {
     let mut deg = vec![0; d.vertices.len()];
     for e in &d.edges {
         for v in [e.from, e.to].into_iter().flatten() {
             deg[v] += 1;
         }
     }
-    deg
+    (0..d.vertices.len())
+        .filter(|&v| deg[v] == 1)
+        .map(|v| d.vertices[v].at)
+        .collect()
+}
+
+/// Asserts that one of `ends` lies within `eps` of `end`.
+fn assert_an_end_near(ends: &[Point], end: Point, eps: f64) {
+    let near = ends
+        .iter()
+        .map(|p| p.dist(end))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        near <= eps,
+        "a ridge end within epsilon of {end:?}: {ends:?}"
+    );
 }
 
 /// Asserts that every vertex and edge point has its clearance, equal to the brute-force
@@ -83,22 +98,10 @@ fn the_ellipse_has_the_segment_between_its_centres_of_curvature() {
     let eps = s.epsilon();
     let d = compute(&s, &Options::default()).unwrap();
     d.check_invariants().unwrap();
-    let ends: Vec<Point> = degrees(&d)
-        .iter()
-        .enumerate()
-        .filter(|(_, &k)| k == 1)
-        .map(|(v, _)| d.vertices[v].at)
-        .collect();
+    let ends = ridge_ends(&d);
     assert_eq!(ends.len(), 2, "two ridge ends: {:?}", d.vertices);
     for end in [Point::new(-1.5, 0.0), Point::new(1.5, 0.0)] {
-        let near = ends
-            .iter()
-            .map(|p| p.dist(end))
-            .fold(f64::INFINITY, f64::min);
-        assert!(
-            near <= eps,
-            "a ridge end within epsilon of {end:?}: {ends:?}"
-        );
+        assert_an_end_near(&ends, end, eps);
     }
     // every point on the segment, and the segment covered
     let points: Vec<Point> = d
@@ -157,23 +160,11 @@ fn the_superellipse_has_its_diagonals_out_to_the_centres_of_curvature() {
     let g = 4.0 * c.powi(3);
     let kappa = 2.0 * 12.0 * c * c * g * g / (2.0 * g * g).powf(1.5);
     let reach = c - 1.0 / kappa / 2f64.sqrt();
-    let ends: Vec<Point> = degrees(&d)
-        .iter()
-        .enumerate()
-        .filter(|(_, &k)| k == 1)
-        .map(|(v, _)| d.vertices[v].at)
-        .collect();
+    let ends = ridge_ends(&d);
     assert_eq!(ends.len(), 4, "{:?}", d.vertices);
     for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
         let end = Point::new(sx * reach, sy * reach);
-        let near = ends
-            .iter()
-            .map(|p| p.dist(end))
-            .fold(f64::INFINITY, f64::min);
-        assert!(
-            near <= eps,
-            "a ridge end within epsilon of {end:?}: {ends:?}"
-        );
+        assert_an_end_near(&ends, end, eps);
     }
     for e in &d.edges {
         for q in &e.points {
@@ -215,11 +206,7 @@ fn a_non_symmetric_oval_has_its_ridges_inside_with_their_clearances() {
     }
     assert_clearances(&d, &at);
     // symmetric about the x axis: each ridge end has its mirror image
-    let deg = degrees(&d);
-    let ends: Vec<Point> = (0..d.vertices.len())
-        .filter(|&v| deg[v] == 1)
-        .map(|v| d.vertices[v].at)
-        .collect();
+    let ends = ridge_ends(&d);
     assert_eq!(ends.len(), 4, "{:?}", d.vertices);
     for p in &ends {
         let mirror = Point::new(p.x, -p.y);

@@ -272,7 +272,14 @@ impl Aabb {
     pub fn outside_distance(&self, p: Point) -> f64 {
         let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);
         let dy = (self.min.y - p.y).max(p.y - self.max.y).max(0.0);
-        dx.hypot(dy)
+        // `hypot` of a zero and `v` is `v`: the common case costs no `hypot`
+        if dx == 0.0 {
+            dy
+        } else if dy == 0.0 {
+            dx
+        } else {
+            dx.hypot(dy)
+        }
     }
 
     /// The distance between the box and the segment `[a, b]` (0 where they meet): for
@@ -281,12 +288,14 @@ impl Aabb {
         if self.segment_range(a, b).is_some() {
             return 0.0;
         }
-        self.corners()
+        // the least of the corners' distances as one square root of the least square
+        // (the same value: a correctly rounded square root is monotone)
+        let corners = self
+            .corners()
             .iter()
-            .map(|&c| segment_distance(c, a, b))
-            .fold(
-                self.outside_distance(a).min(self.outside_distance(b)),
-                f64::min,
-            )
+            .map(|&c| c.dist2(segment_foot(c, a, b)))
+            .fold(f64::INFINITY, f64::min)
+            .sqrt();
+        corners.min(self.outside_distance(a).min(self.outside_distance(b)))
     }
 }

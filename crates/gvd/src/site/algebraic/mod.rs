@@ -235,11 +235,13 @@ impl AlgebraicField {
             return f64::INFINITY;
         }
         let w = &self.enclosure.witnesses[w as usize];
+        // one square root of the largest square (the same value: sqrt is monotone)
         let far = b
             .corners()
             .iter()
-            .map(|c| c.dist(w.a).max(c.dist(w.b)))
-            .fold(0.0, f64::max);
+            .map(|c| c.dist2(w.a).max(c.dist2(w.b)))
+            .fold(0.0, f64::max)
+            .sqrt();
         round_up(far * (1.0 + 4.0 * f64::EPSILON))
     }
 

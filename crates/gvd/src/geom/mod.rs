@@ -288,14 +288,27 @@ impl Aabb {
         if self.segment_range(a, b).is_some() {
             return 0.0;
         }
-        // the least of the corners' distances as one square root of the least square
-        // (the same value: a correctly rounded square root is monotone)
-        let corners = self
+        // one square root of the least square (squares overflow beyond 1e154: then
+        // each distance on its own, without overflow)
+        let outside2 = |p: Point| {
+            let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);
+            let dy = (self.min.y - p.y).max(p.y - self.max.y).max(0.0);
+            dx * dx + dy * dy
+        };
+        let least = self
             .corners()
             .iter()
             .map(|&c| c.dist2(segment_foot(c, a, b)))
-            .fold(f64::INFINITY, f64::min)
-            .sqrt();
-        corners.min(self.outside_distance(a).min(self.outside_distance(b)))
+            .fold(outside2(a).min(outside2(b)), f64::min);
+        if least.is_finite() {
+            return least.sqrt();
+        }
+        self.corners()
+            .iter()
+            .map(|&c| segment_distance(c, a, b))
+            .fold(
+                self.outside_distance(a).min(self.outside_distance(b)),
+                f64::min,
+            )
     }
 }

@@ -130,12 +130,34 @@ impl AlgebraicField {
     /// The nodes of `from` (and their descendants) that may hold a nearest point for a
     /// point of `b`, and the bounds they give.
     fn refine(&self, b: &Aabb, from: &[u32]) -> AlgebraicState {
+        let (kept, lo, hi) = self.kept_nodes(b, from);
+        let unit = Interval::new(-1.0, 1.0);
+        let mut gradient: Option<[Interval; 2]> = None;
+        for &n in &kept {
+            let g = self.gradient_from(b, &self.enclosure.nodes[n as usize]);
+            gradient = Some(match gradient {
+                None => g,
+                Some(h) => [h[0].hull(g[0]), h[1].hull(g[1])],
+            });
+        }
+        AlgebraicState {
+            nodes: kept,
+            lo,
+            hi,
+            gradient: gradient.unwrap_or([unit, unit]),
+        }
+    }
+
+    /// [`refine`](Self::refine) without the gradient bound: the nodes kept and the
+    /// distance bounds `(lo, hi)` they give.
+    fn kept_nodes(&self, b: &Aabb, from: &[u32]) -> (Vec<u32>, f64, f64) {
         let e = &self.enclosure;
         let mut hi = f64::INFINITY;
         for &n in from {
             hi = hi.min(self.witness_upper(b, n));
         }
-        let open = 0.5 * diagonal(b);
+        // nodes whose diagonal is longer than half the box's are opened (squared lengths)
+        let open = 0.25 * diagonal_squared(b);
         let mut work = from.to_vec();
         let mut kept: Vec<(u32, f64)> = Vec::new();
         while let Some(n) = work.pop() {
@@ -144,7 +166,7 @@ impl AlgebraicField {
             if lo > hi || holds_no_foot(&self.clip, b, &node.bbox, &node.normal) {
                 continue;
             }
-            if node.leaf == NONE && diagonal(&node.bbox) > open {
+            if node.leaf == NONE && diagonal_squared(&node.bbox) > open {
                 // nearer child last, so that it is opened next and tightens `hi` early
                 let mut kids = [(f64::INFINITY, NONE); 2];
                 for (k, &c) in e.children(n).iter().enumerate().take(2) {
@@ -163,21 +185,11 @@ impl AlgebraicField {
         }
         kept.retain(|k| k.1 <= hi);
         let lo = kept.iter().map(|k| k.1).fold(f64::INFINITY, f64::min);
-        let unit = Interval::new(-1.0, 1.0);
-        let mut gradient: Option<[Interval; 2]> = None;
-        for &(n, _) in &kept {
-            let g = self.gradient_from(b, &e.nodes[n as usize]);
-            gradient = Some(match gradient {
-                None => g,
-                Some(h) => [h[0].hull(g[0]), h[1].hull(g[1])],
-            });
-        }
-        AlgebraicState {
-            nodes: kept.into_iter().map(|k| k.0).collect(),
-            lo: round_down(lo.min(hi)).max(0.0),
+        (
+            kept.into_iter().map(|k| k.0).collect(),
+            round_down(lo.min(hi)).max(0.0),
             hi,
-            gradient: gradient.unwrap_or([unit, unit]),
-        }
+        )
     }
 
     /// An enclosure of the distance's gradient `(q − p)/|q − p|` at the points `q` of `b`
@@ -305,9 +317,9 @@ fn clip_sides(clip: &Aabb, n: &Aabb) -> [(bool, [f64; 2]); 4] {
     ]
 }
 
-/// The length of a box's diagonal.
-fn diagonal(b: &Aabb) -> f64 {
-    b.width().hypot(b.height())
+/// The squared length of a box's diagonal.
+fn diagonal_squared(b: &Aabb) -> f64 {
+    b.width() * b.width() + b.height() * b.height()
 }
 
 /// The least distance between two boxes, rounded down.
@@ -408,8 +420,11 @@ impl DistanceField for AlgebraicField {
         };
         let c = b.center();
         let at_c = Aabb::new(c, c);
-        let (sc, oc) = (self.refine(&at_c, &s.nodes), other.refine(&at_c, &so.nodes));
-        let centre = Interval::new(sc.lo, sc.hi) - Interval::new(oc.lo, oc.hi);
+        let ((_, s_lo, s_hi), (_, o_lo, o_hi)) = (
+            self.kept_nodes(&at_c, &s.nodes),
+            other.kept_nodes(&at_c, &so.nodes),
+        );
+        let centre = Interval::new(s_lo, s_hi) - Interval::new(o_lo, o_hi);
         let mean = centre + g[0] * (b.x() - c.x) + g[1] * (b.y() - c.y);
         let (lo, hi) = (plain.value.lo.max(mean.lo), plain.value.hi.min(mean.hi));
         if lo > hi {

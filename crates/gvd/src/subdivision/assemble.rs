@@ -144,7 +144,8 @@ fn build_complex(
     let mut short = vec![false; chains.len()];
     for (k, c) in chains.iter().enumerate() {
         if let [Some(a), Some(b)] = c.ends {
-            if length(&c.points) <= merge_len {
+            if length(&c.points) <= merge_len || is_split_vertex(&found[a], &found[b], c, merge_len)
+            {
                 short[k] = true;
                 sets.union(a, b);
             }
@@ -211,6 +212,19 @@ fn build_complex(
         });
     }
     out
+}
+
+/// Whether chain `c` between vertices `a` and `b` joins two halves of one vertex: both
+/// ends have three or more sites and lie within `tol` of each other, and the chain,
+/// however bent, stays within `tol / 2` of their midpoint. At a vertex of four or more
+/// tied sites (the centre of Shou et al.'s four circles) the leaves around it find two
+/// vertices a leaf side apart, joined by chains that follow the sides between them.
+fn is_split_vertex(a: &FoundVertex, b: &FoundVertex, c: &Chain, tol: f64) -> bool {
+    let mid = (a.at + b.at) * 0.5;
+    a.sites.len() >= 3
+        && b.sites.len() >= 3
+        && a.at.dist(b.at) <= tol
+        && c.points.iter().all(|q| q.dist(mid) <= 0.5 * tol)
 }
 
 /// Whether a polyline goes out and comes back along itself within `tol` (its `i`-th

@@ -51,12 +51,50 @@ pub(crate) fn run(
             })
     };
     keep_passing(&mut out.complex, &passes, resolution / 4.0, &|_, _| None);
+    snap_ridge_ends(&mut out.complex, &m, resolution);
     name_sites(&mut out.complex, &m);
     out.complex.cells.clear();
     out.complex
         .stats
         .insert("medial_pieces".into(), json!(m.fields.len()));
     Ok(out)
+}
+
+/// Moves each ridge end (a vertex of degree one) within `tol` of a centre of curvature
+/// of a piece end to that centre, where the ridge truly ends. The cut on the zone
+/// boundary lies on the simplified polyline, up to a fraction of the resolution aside;
+/// near a vertex of the curve the nearest point is flat to fourth order, so that much
+/// aside puts the foot, and its centre of curvature, several resolutions away.
+fn snap_ridge_ends(complex: &mut VoronoiComplex, m: &MedialFields, tol: f64) {
+    let mut degree = vec![0usize; complex.vertices.len()];
+    for e in &complex.edges {
+        for v in [e.from, e.to].into_iter().flatten() {
+            degree[v] += 1;
+        }
+    }
+    let centres: Vec<Point> = m.ends.iter().flatten().filter_map(|e| e.centre()).collect();
+    for (v, vertex) in complex.vertices.iter_mut().enumerate() {
+        if degree[v] != 1 {
+            continue;
+        }
+        let nearest = centres
+            .iter()
+            .copied()
+            .min_by(|a, b| a.dist(vertex.at).total_cmp(&b.dist(vertex.at)));
+        if let Some(c) = nearest.filter(|c| c.dist(vertex.at) <= tol) {
+            vertex.at = c;
+        }
+    }
+    for e in &mut complex.edges {
+        let mut points = e.points.to_vec();
+        if let (Some(v), Some(first)) = (e.from, points.first_mut()) {
+            *first = complex.vertices[v].at;
+        }
+        if let (Some(v), Some(last)) = (e.to, points.last_mut()) {
+            *last = complex.vertices[v].at;
+        }
+        e.points = points.into();
+    }
 }
 
 /// Replaces each generator (a field's index) by what it stands for: a piece of an

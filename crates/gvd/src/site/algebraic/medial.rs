@@ -62,6 +62,14 @@ impl End {
         let d = q - self.at;
         d.cross(self.inward).abs() <= slop && d.dot(self.inward) <= self.focal
     }
+
+    /// The centre of curvature `at + ρ·inward`, where a ridge ends if this end is a
+    /// vertex of the curve (none where the curve bends away from the region).
+    pub fn centre(&self) -> Option<Point> {
+        self.focal
+            .is_finite()
+            .then(|| self.at + self.inward * self.focal)
+    }
 }
 
 /// The region a closed smooth curve bounds by the even-odd rule: `f` changes sign across

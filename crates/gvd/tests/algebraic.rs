@@ -410,6 +410,44 @@ fn paper_example_3_at_a_finer_epsilon_has_no_broken_edge() {
     assert_eq!(d.vertices.len(), 1);
 }
 
+/// The four unit circles about the corners of [−1, 1]² touch at the side midpoints; their
+/// diagram is the two axes, crossing in one vertex of all four sites at the origin (and
+/// the domain's sides, along which neighbouring circles tie). At
+/// epsilon 1/1024 the boxes about the origin once gave two three-site vertices joined by
+/// short duplicate edges.
+#[test]
+fn paper_example_4_at_a_finer_epsilon_has_one_centre_vertex() {
+    let s = scene("shou-ex4-four-circles");
+    let fine = Scene::new(s.domain(), 1.0 / 1024.0, s.mode(), s.sites().to_vec()).unwrap();
+    let d = compute(&fine, &Options::default()).unwrap();
+    d.check_invariants().unwrap();
+    assert_eq!(d.vertices.len(), 1, "{:?}", d.vertices);
+    let centre = &d.vertices[0];
+    assert!(
+        centre.at.dist(Point::new(0.0, 0.0)) <= fine.epsilon(),
+        "{centre:?}"
+    );
+    let mut sites: Vec<usize> = centre.sites.iter().map(|g| g.site()).collect();
+    sites.sort();
+    assert_eq!(sites, [0, 1, 2, 3]);
+    assert_eq!(d.edges.len(), 4);
+    for e in &d.edges {
+        assert!(
+            e.from == Some(0) || e.to == Some(0),
+            "{e:?} misses the centre"
+        );
+        // the domain's sides are ties too: along y = −1, say, both lower circles are |x| away
+        for q in &e.points {
+            let off_axes = q.x.abs().min(q.y.abs());
+            let off_sides = (1.0 - q.x.abs()).min(1.0 - q.y.abs());
+            assert!(
+                off_axes.min(off_sides) <= fine.epsilon(),
+                "{q:?} off the bisectors"
+            );
+        }
+    }
+}
+
 #[test]
 fn mixed_with_points_and_circles() {
     let d = check("mixed-astroid-points-circles");

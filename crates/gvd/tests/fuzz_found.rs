@@ -212,6 +212,19 @@ fn the_incremental_engine_states_its_resolution_below_f64s() {
 }
 
 #[test]
+fn verify_takes_an_intrusion_within_rounding_as_none() {
+    // The same twelve points at 1e300, one moved to 1e285 from the centre: their
+    // bisector meets the others' where the two distances differ by an ulp, and verify
+    // divided that ulp by the gradients' difference (1e-15, clamped to 1e-12): 3e8
+    // epsilons of "another generator is nearer" on the exact engine's edges.
+    let sc = scene("fuzz/cocircular-12-1e300-centre-pair");
+    let d = compute(&sc, &Options::default()).unwrap();
+    assert_eq!(d.stats["engine"], "incremental");
+    let report = verify(&sc, &d, &grid64()).unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}
+
+#[test]
 fn a_free_form_medial_axis_of_curves_that_bound_nothing_is_refused() {
     // Four Bézier curves joined into a loop, one end moved off the loop (to y = 5e-324):
     // the chain no longer closes, and the medial axis was written outside any region.

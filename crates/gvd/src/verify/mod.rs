@@ -304,11 +304,15 @@ impl<'a> Checker<'a> {
 
     /// How far another site intrudes at `q` beyond the nearer of `gens`, whose value
     /// there is `dmin` with gradient `gmin` (first order, in length units), and the
-    /// intruder; a point inside a closed site counts its depth.
+    /// intruder; a point inside a closed site counts its depth. An excess within the
+    /// rounding of the two values (some ulps of `dmin` and of `q`'s coordinates) is
+    /// none: divided by the gradients' small difference (two sites nearly in line with
+    /// `q`) it would be rounding divided by rounding.
     fn intrusion(&self, q: Point, dmin: f64, gmin: Point, gens: &[usize]) -> (f64, usize) {
+        let rounding = 8.0 * f64::EPSILON * (dmin.abs() + q.x.abs().max(q.y.abs()));
         match self.near.at(q) {
             None => (self.near.inside_depth(q), usize::MAX),
-            Some(hit) if !gens.contains(&hit.gen) && dmin > hit.value => {
+            Some(hit) if !gens.contains(&hit.gen) && dmin - hit.value > rounding => {
                 let (_, gk) = self.eval(hit.gen, q);
                 ((dmin - hit.value) / (gmin - gk).norm().max(1e-12), hit.gen)
             }

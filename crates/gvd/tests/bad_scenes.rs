@@ -213,6 +213,41 @@ fn every_kind_scene_is_valid() {
     assert_eq!(scene.sites().len(), 13);
 }
 
+#[test]
+fn a_closed_bspline_whose_ends_do_not_meet_is_refused() {
+    // The free-form engine took the flag on trust: a loop joined by an edge that is
+    // not there. At 1e300 the ends' distance and the first end's norm both overflowed
+    // to infinity in the test of whether ends meet, and any two ends met.
+    let scene = |scale: f64, last: [f64; 2], closed: bool| {
+        let cps: Vec<[f64; 2]> = [[1.0, 1.0], [2.0, 2.0], [3.0, 1.0], [2.0, 0.0], last]
+            .iter()
+            .map(|p| [p[0] * scale, p[1] * scale])
+            .collect();
+        Scene::from_value(
+            &json!({"domain": [-4.0 * scale, -4.0 * scale, 4.0 * scale, 4.0 * scale],
+            "epsilon": 0.01 * scale, "sites": [
+            {"kind": "point", "at": [3.0 * scale, 3.0 * scale]},
+            {"kind": "bspline", "degree": 2, "control_points": cps,
+             "knots": [0, 0, 0, 1, 2, 3, 3, 3], "closed": closed}]}),
+        )
+    };
+    for scale in [1.0, 1e300] {
+        let err = scene(scale, [1.5, 1.0], true).unwrap_err();
+        match &err {
+            Error::Site { site: 1, field, .. } if field == "closed" => {}
+            e => panic!("at {scale}: {e}"),
+        }
+        let m = err.to_string();
+        assert!(
+            m.contains("site 1 field 'closed': the curve is marked closed, but its ends"),
+            "{m}"
+        );
+        // the same curve open, or closed with its ends meeting, is kept
+        assert!(scene(scale, [1.5, 1.0], false).is_ok());
+        assert!(scene(scale, [1.0, 1.0], true).is_ok());
+    }
+}
+
 proptest! {
     #[test]
     fn random_json_never_panics(v in arb_json()) {

@@ -8,6 +8,7 @@
 
 use crate::complex::{FeatureKind, Generator};
 use crate::geom::bezier::RationalBezier;
+use crate::geom::bspline::ends_meet;
 use crate::geom::ring::{even_odd_contains, signed_area};
 use crate::geom::{Aabb, Point};
 use crate::num::bernstein::Bernstein1;
@@ -189,7 +190,8 @@ fn site_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)> {
                 .first()
                 .zip(spans.last())
                 .map(|(a, b)| (a.eval(0.0), b.eval(1.0)));
-            let meets = ends.is_some_and(|(a, b)| a.dist(b) <= 1e-9 * (1.0 + a.norm()));
+            // the scene's check refuses a `closed` flag on ends that do not meet
+            let meets = ends.is_some_and(|(a, b)| ends_meet(a, b));
             Some((spans, *closed || meets))
         }
         _ => None,

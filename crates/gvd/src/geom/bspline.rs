@@ -136,6 +136,12 @@ impl RationalBspline {
         out
     }
 
+    /// The points at both ends of the domain.
+    pub fn ends(&self) -> (Point, Point) {
+        let (lo, hi) = self.domain();
+        (self.eval(lo), self.eval(hi))
+    }
+
     /// The point at `t`.
     pub fn eval(&self, t: f64) -> Point {
         let h = self.homogeneous_at(t);
@@ -184,6 +190,13 @@ impl RationalBspline {
         let d = 1e-9 * (hi - lo);
         turn(self.derivative(hi - d), self.derivative(lo + d)) > 1e-6
     }
+}
+
+/// Whether a curve's end points `a` and `b` meet, and so it closes up: within `1e-9` of
+/// `1 + |a|`. The lengths are `hypot`s: their squares overflow near 1e154, and an
+/// infinite `|a|` would make any two ends meet.
+pub fn ends_meet(a: Point, b: Point) -> bool {
+    (a.x - b.x).hypot(a.y - b.y) <= 1e-9 * (1.0 + a.x.hypot(a.y))
 }
 
 /// The angle between two vectors (π when one vanishes).

@@ -4,6 +4,7 @@
 
 use super::validate::check_rings;
 use super::{Metric, SiteKind};
+use crate::geom::bspline::{ends_meet, RationalBspline};
 use crate::geom::{Aabb, Point};
 use crate::num::poly::MAX_DEGREE;
 
@@ -161,8 +162,8 @@ pub(crate) fn check_site(kind: &mut SiteKind) -> Result<(), Refusal> {
             control_points,
             knots,
             weights,
-            closed: _,
-        } => check_bspline(*degree, control_points, knots, weights.as_deref()),
+            closed,
+        } => check_bspline(*degree, control_points, knots, weights.as_deref(), *closed),
         SiteKind::Field { .. } => Ok(()),
         SiteKind::ImplicitField { equation } => {
             if equation.poly().degree_in(2) == 0 {
@@ -250,6 +251,7 @@ fn check_bspline(
     control_points: &[Point],
     knots: &[f64],
     weights: Option<&[f64]>,
+    closed: bool,
 ) -> Result<(), Refusal> {
     if degree < 1 {
         return Err(refuse(
@@ -306,7 +308,21 @@ fn check_bspline(
             ),
         ));
     }
-    check_weights(weights, n)
+    check_weights(weights, n)?;
+    // the engines take a closed curve for a loop that bounds a region
+    if closed {
+        let (a, b) = RationalBspline::new(degree, control_points, knots, weights).ends();
+        if !ends_meet(a, b) {
+            return Err(refuse(
+                "closed",
+                format!(
+                    "the curve is marked closed, but its ends [{}, {}] and [{}, {}] do not meet",
+                    a.x, a.y, b.x, b.y
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Optional rational weights: one per control point, each > 0.

@@ -93,34 +93,17 @@ fn open_ends(site: &SiteKind) -> Option<(Point, Point)> {
             let at = |a: f64| *center + Point::new(a.cos(), a.sin()) * *radius;
             Some((at(*start_angle), at(start_angle + sweep)))
         }
-        SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => {
-            let ends = |c: &RationalBspline| {
-                let (lo, hi) = c.domain();
-                (c.eval(lo), c.eval(hi))
-            };
-            match site {
-                SiteKind::Bezier {
-                    control_points,
-                    weights,
-                } => Some(ends(&RationalBspline::bezier(
-                    control_points,
-                    weights.as_deref(),
-                ))),
-                SiteKind::Bspline {
-                    degree,
-                    control_points,
-                    knots,
-                    weights,
-                    closed: false,
-                } => Some(ends(&RationalBspline::new(
-                    *degree,
-                    control_points,
-                    knots,
-                    weights.as_deref(),
-                ))),
-                _ => None,
-            }
-        }
+        SiteKind::Bezier {
+            control_points,
+            weights,
+        } => Some(RationalBspline::bezier(control_points, weights.as_deref()).ends()),
+        SiteKind::Bspline {
+            degree,
+            control_points,
+            knots,
+            weights,
+            closed: false,
+        } => Some(RationalBspline::new(*degree, control_points, knots, weights.as_deref()).ends()),
         _ => None,
     }
 }

@@ -3,9 +3,11 @@
 //! the centres of curvature of its ends `(±(a² − b²)/a, 0) = (±1.5, 0)`, with clearance
 //! `√(1 − x²/3)` at `(x, 0)`; the superellipse `x⁴ + y⁴ = 1`, whose axis is its two
 //! diagonals out to the centres of curvature of its diagonal vertices; a non-symmetric
-//! oval; and the refusals.
+//! oval; `gvd verify` on them, passing their diagrams and failing broken ones; and the
+//! refusals.
 
 use gvd::geom::Point;
+use gvd::verify::{verify, VerifyOptions};
 use gvd::{compute, Error, Options, Scene, VoronoiComplex};
 
 fn scene(name: &str) -> Scene {
@@ -235,6 +237,61 @@ fn a_non_symmetric_oval_has_its_ridges_inside_with_their_clearances() {
     for p in &ends {
         assert_an_end_near(&centres, *p, s.epsilon() / 20.0);
     }
+}
+
+/// Asserts that `gvd verify` passes `d` as the diagram of `s`.
+fn assert_verified(s: &Scene, d: &VoronoiComplex) {
+    let report = verify(s, d, &VerifyOptions::default()).unwrap();
+    assert!(
+        report.passed,
+        "{}\n{:?}",
+        report.summary_line(),
+        report.problems
+    );
+}
+
+#[test]
+fn verify_passes_the_three_curves_medial_axes() {
+    for name in [
+        "ellipse-medial.json",
+        "superellipse-medial.json",
+        "oval-medial.json",
+    ] {
+        let s = scene(name);
+        assert_verified(&s, &compute(&s, &Options::default()).unwrap());
+    }
+}
+
+/// Without one of its ridges, or with a ridge end moved off its centre of curvature,
+/// the oval's medial axis fails: the checker finds the ridges by the jumps of the
+/// nearest foot across its grid, and the ends by the centres of curvature.
+#[test]
+fn verify_fails_a_missing_ridge_and_a_moved_ridge_end() {
+    let s = scene("oval-medial.json");
+    let d = compute(&s, &Options::default()).unwrap();
+    let opts = VerifyOptions {
+        grid: 256,
+        ..VerifyOptions::default()
+    };
+    let mut missing = d.clone();
+    missing.edges.remove(0);
+    let report = verify(&s, &missing, &opts).unwrap();
+    assert!(
+        !report.passed && report.complete < 1.0,
+        "{}",
+        report.summary_line()
+    );
+
+    let end = ridge_ends(&d)[0];
+    let mut moved = d.clone();
+    let k = moved.vertices.iter().position(|v| v.at == end).unwrap();
+    moved.vertices[k].at = end + (end * (0.02 / end.norm()));
+    let report = verify(&s, &moved, &opts).unwrap();
+    assert!(
+        !report.passed && report.vertices_ok.0 < report.vertices_ok.1,
+        "{}",
+        report.summary_line()
+    );
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! Check c (completeness): every label change between neighbours of an N × N grid is
 //! covered by an output edge of the same pair or a vertex listing both.
 
+use super::field::Field;
 use super::report::MAX_LIST;
 use super::Checker;
 use crate::geom::grid::BucketGrid;
@@ -97,6 +98,35 @@ impl Checker<'_> {
         }
     }
 
+    /// Where the ridge of the whole curve `g` (its self-bisector, the medial axis inside
+    /// a closed curve) crosses the grid step `qa`–`qb`, whose nearest feet lie far
+    /// apart: bisection keeps the half whose ends' feet differ more (a point's foot is
+    /// the nearest of its own and the slides from the two ends' feet), down to `1e-12`
+    /// of the scene;
+    /// a jump of more than `1e-6` of the scene across that is a crossing (a continuous
+    /// foot would move by about `1e-12 · ρ/(ρ − d)` of it, `ρ` the radius of curvature
+    /// and `d` the distance).
+    fn ridge_crossing(&self, qa: Point, qb: Point, g: usize) -> Option<Point> {
+        let Field::Curve(curve) = &self.fields[g] else {
+            return None;
+        };
+        let (mut a, mut b) = (qa, qb);
+        let (mut fa, mut fb) = (curve.foot(a)?, curve.foot(b)?);
+        while a.dist(b) > 1e-12 * self.scale {
+            let m = a.lerp(b, 0.5);
+            let fm = [curve.foot(m)?, curve.slide(m, fa), curve.slide(m, fb)]
+                .into_iter()
+                .min_by(|p, q| m.dist(*p).total_cmp(&m.dist(*q)))?;
+            if fm.dist(fa) >= fm.dist(fb) {
+                (b, fb) = (m, fm);
+            } else {
+                (a, fa) = (m, fm);
+            }
+        }
+        let x = a.lerp(b, 0.5);
+        (fa.dist(fb) > 1e-6 * self.scale && self.in_region(x)).then_some(x)
+    }
+
     /// `g` and the generators that may name its region at `x` instead: where `g`'s foot
     /// from `x` is a point that other sites share (see [`generators::SharedPoints`]),
     /// their generators there that tie with `g` at `x`; and the generators of other
@@ -148,14 +178,24 @@ impl Checker<'_> {
                 None
             }
         });
+        // the nearest feet on whole curves, whose jumps are their ridges' crossings
+        let feet = map_range(n * n, 1, |k| {
+            let g = labels[k].filter(|&g| self.gens.whole_curve_field(g))?;
+            self.fields[g].foot(node(k % n, k / n))
+        });
         let mut pairs = Vec::new();
         for j in 0..n {
             for i in 0..n {
                 let Some(a) = labels[j * n + i] else { continue };
                 for (di, dj) in [(1, 0), (0, 1)] {
                     if i + di < n && j + dj < n {
-                        if let Some(b) = labels[(j + dj) * n + i + di] {
-                            if a != b && !self.gens.zone_boundary(a, b) {
+                        let k = (j + dj) * n + i + di;
+                        if let Some(b) = labels[k] {
+                            let jump = match (feet[j * n + i], feet[k]) {
+                                (Some(fa), Some(fb)) => a == b && fa.dist(fb) > 4.0 * hx.max(hy),
+                                _ => false,
+                            };
+                            if (a != b && !self.gens.zone_boundary(a, b)) || jump {
                                 pairs.push((node(i, j), node(i + di, j + dj), a, b));
                             }
                         }
@@ -166,7 +206,11 @@ impl Checker<'_> {
         let found = map_range(pairs.len(), 1, |p| {
             let (qa, qb, a, b) = pairs[p];
             let mut out = Vec::new();
-            self.crossings(qa, qb, a, b, 0, &mut out);
+            if a == b {
+                out.extend(self.ridge_crossing(qa, qb, a).map(|x| (x, a, a)));
+            } else {
+                self.crossings(qa, qb, a, b, 0, &mut out);
+            }
             out
         });
         let crossings: Vec<(Point, usize, usize)> = found.into_iter().flatten().collect();

@@ -7,10 +7,16 @@
 //! curve (gradient Newton). The distance at `q` starts from the nearest sample (a k-d
 //! tree) and slides along the curve: step along the tangent to the projection of `q`,
 //! project back onto `f = 0`, keep the best point.
+//!
+//! For medial axes the curve also gives every local minimum of the distance from a
+//! point (its *branches*, [`Curve::local_feet`]), the centre of curvature at a foot, and
+//! the region it encloses (where `f` has the other sign than at the clip box's corner,
+//! which a closed curve does not reach).
 
 use crate::geom::{Aabb, Point};
 use crate::num::poly::Poly;
 use crate::num::Interval;
+use std::collections::HashMap;
 
 /// Cells smaller than the clip box by this factor are not split (a floor on the work).
 const MIN_CELL: f64 = 1.0 / 16384.0;
@@ -21,8 +27,13 @@ pub(super) struct Curve {
     f: Poly,
     fx: Poly,
     fy: Poly,
+    fxx: Poly,
+    fxy: Poly,
+    fyy: Poly,
     clip: Aabb,
     step: f64,
+    /// the sign of `f` at the clip box's lower left corner: `f > 0` there
+    outside_positive: bool,
     /// samples in k-d order (see [`Curve::nearest_sample`])
     tree: Vec<Point>,
 }
@@ -31,12 +42,17 @@ impl Curve {
     /// Samples `{f = 0} ∩ clip` at a spacing of about `spacing`.
     pub(super) fn new(f: &Poly, clip: Aabb, spacing: f64) -> Curve {
         let step = spacing.max(MIN_CELL * clip.longest_side());
+        let (fx, fy) = (f.partial(0), f.partial(1));
         let mut c = Curve {
-            fx: f.partial(0),
-            fy: f.partial(1),
+            fxx: fx.partial(0),
+            fxy: fx.partial(1),
+            fyy: fy.partial(1),
+            fx,
+            fy,
             f: f.clone(),
             clip,
             step,
+            outside_positive: f.eval(clip.min.x, clip.min.y, 0.0) > 0.0,
             tree: Vec::new(),
         };
         let mut samples = Vec::new();
@@ -142,18 +158,91 @@ impl Curve {
         (self.f_at(p).abs() <= 1e-9 * g * self.step).then_some(p)
     }
 
+    /// Whether `q` lies in the region the curve encloses: inside the clip box, where
+    /// `f` has the other sign than at the box's corner (even-odd over nested loops).
+    pub(super) fn encloses(&self, q: Point) -> bool {
+        let v = self.f_at(q);
+        self.clip.contains(q) && v != 0.0 && (v > 0.0) != self.outside_positive
+    }
+
+    /// The centre of curvature at the curve point `p`, `p − n/κ` with `n = ∇f/|∇f|` and
+    /// `κ = (f_xx f_y² − 2 f_xy f_x f_y + f_yy f_x²) / |∇f|³` (`None` where flat).
+    pub(super) fn curvature_center(&self, p: Point) -> Option<Point> {
+        let g = self.grad(p);
+        let n = g.norm();
+        let at = |h: &Poly| h.eval(p.x, p.y, 0.0);
+        let num =
+            at(&self.fxx) * g.y * g.y - 2.0 * at(&self.fxy) * g.x * g.y + at(&self.fyy) * g.x * g.x;
+        let kappa = num / (n * n * n);
+        (kappa.is_finite() && kappa != 0.0).then(|| p - g * (1.0 / (n * kappa)))
+    }
+
+    /// Every local minimum of the distance from `q` along the curve within `slack` of
+    /// the least, nearest first, as `(distance, foot)`. The samples within reach are
+    /// taken nearest first; one with no sample taken before within three sample
+    /// spacings starts a new basin, and a slide from it finds that basin's foot (feet
+    /// within two spacings are one).
+    pub(super) fn local_feet(&self, q: Point, slack: f64) -> Vec<(f64, Point)> {
+        let Some(least) = self.foot(q) else {
+            return Vec::new();
+        };
+        let reach = q.dist(least) + slack + 2.0 * self.step;
+        let mut near = Vec::new();
+        within_kd(&self.tree, 0, q, reach, &mut near);
+        near.sort_by(|a, b| q.dist(*a).total_cmp(&q.dist(*b)));
+        let cell = 3.0 * self.step;
+        let key = |p: Point| ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64);
+        let mut taken: HashMap<(i64, i64), Vec<Point>> = HashMap::new();
+        let mut feet: Vec<(f64, Point)> = vec![(q.dist(least), least)];
+        for p in near {
+            let (kx, ky) = key(p);
+            let joined = (-1..=1).any(|i| {
+                (-1..=1).any(|j| {
+                    taken
+                        .get(&(kx + i, ky + j))
+                        .is_some_and(|v| v.iter().any(|t| t.dist(p) <= cell))
+                })
+            });
+            taken.entry((kx, ky)).or_default().push(p);
+            if joined {
+                continue;
+            }
+            let foot = self.slide(q, p);
+            if feet.iter().all(|f| f.1.dist(foot) > 2.0 * self.step) {
+                feet.push((q.dist(foot), foot));
+            }
+        }
+        feet.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let best = feet[0].0;
+        feet.retain(|f| f.0 <= best + slack);
+        feet
+    }
+
     /// The nearest point of the curve to `q` (`None`: no sample at all).
     pub(super) fn foot(&self, q: Point) -> Option<Point> {
-        let mut best = self.nearest_sample(q)?;
+        Some(self.slide(q, self.nearest_sample(q)?))
+    }
+
+    /// The local foot of `q` reached from the curve point `start`: Newton steps on the
+    /// foot condition `(q − p)·t = 0` along the tangent `t` (at most a sample spacing
+    /// each), back onto the curve, keeping the nearest point met. The condition's
+    /// derivative along the curve is `−(1 + κ (q − p)·n)`, which goes to 0 as `q`
+    /// nears the centre of curvature (there a plain step converges slowly); it is
+    /// floored at 1/8.
+    pub(super) fn slide(&self, q: Point, start: Point) -> Point {
+        let mut best = start;
         let mut p = best;
-        for _ in 0..24 {
+        for _ in 0..48 {
             let g = self.grad(p);
             let n = g.norm();
             if !(n > 0.0 && n.is_finite()) {
                 break;
             }
             let t = Point::new(-g.y / n, g.x / n);
-            let along = (q - p).dot(t).clamp(-self.step, self.step);
+            let slope = self
+                .curvature_center(p)
+                .map_or(1.0, |c| 1.0 - (q - p).dot(c - p) / (c - p).dot(c - p));
+            let along = ((q - p).dot(t) / slope.max(0.125)).clamp(-self.step, self.step);
             let Some(next) = self.project(p + t * along) else {
                 break;
             };
@@ -168,7 +257,7 @@ impl Curve {
                 break;
             }
         }
-        Some(best)
+        best
     }
 
     /// The nearest sample to `q` (k-d tree search).
@@ -229,5 +318,24 @@ pub(super) fn search_kd<T: Located>(pts: &[T], axis: usize, q: Point, best: &mut
     search_kd(near, 1 - axis, q, best);
     if delta.abs() < best.0 {
         search_kd(far, 1 - axis, q, best);
+    }
+}
+
+/// The items of a tree built by [`build_kd`] within `r` of `q`.
+fn within_kd<T: Located>(pts: &[T], axis: usize, q: Point, r: f64, out: &mut Vec<Point>) {
+    if pts.is_empty() {
+        return;
+    }
+    let mid = pts.len() / 2;
+    let p = pts[mid].at();
+    if q.dist(p) <= r {
+        out.push(p);
+    }
+    let delta = if axis == 0 { q.x - p.x } else { q.y - p.y };
+    if delta - r <= 0.0 {
+        within_kd(&pts[..mid], 1 - axis, q, r, out);
+    }
+    if delta + r >= 0.0 {
+        within_kd(&pts[mid + 1..], 1 - axis, q, r, out);
     }
 }

@@ -222,8 +222,8 @@ impl Field {
 
     /// The branches at `q` of a curved feature's distance whose values are within
     /// `slack` of the least, nearest first: an arc has one (about its centre), a
-    /// free-form piece one per distinct local minimum along it (with the centre of
-    /// curvature at its foot); other fields have none. Two branches tie on the
+    /// free-form piece and an algebraic curve one per distinct local minimum along it
+    /// (with the centre of curvature at its foot); other fields have none. Two branches tie on the
     /// feature's own ridge (its self-bisector), which ends at a centre of curvature.
     pub(super) fn branches(&self, q: Point, slack: f64) -> Vec<Branch> {
         match *self {
@@ -257,6 +257,16 @@ impl Field {
                 }
                 all
             }
+            Field::Curve(ref c) => c
+                .local_feet(q, slack)
+                .into_iter()
+                .map(|(value, foot)| Branch {
+                    value,
+                    foot,
+                    center: c.curvature_center(foot),
+                    param: None,
+                })
+                .collect(),
             _ => Vec::new(),
         }
     }

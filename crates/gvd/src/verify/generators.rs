@@ -178,20 +178,11 @@ impl Gens {
         };
         for (i, site) in scene.sites().iter().enumerate() {
             let kind = &site.kind;
-            if scene.mode() == Mode::MedialAxis
-                && matches!(kind, SiteKind::Ellipse { .. } | SiteKind::Algebraic { .. })
-            {
+            if scene.mode() == Mode::MedialAxis && matches!(kind, SiteKind::Ellipse { .. }) {
                 return Err(Error::Unsupported {
                     site: i,
                     kind: kind.name().to_string(),
-                    message: format!(
-                        "the checker cannot evaluate an {}'s medial axis yet",
-                        if matches!(kind, SiteKind::Ellipse { .. }) {
-                            "ellipse"
-                        } else {
-                            "algebraic curve"
-                        }
-                    ),
+                    message: "the checker cannot evaluate an ellipse's medial axis yet".into(),
                 });
             }
             if featured {
@@ -228,7 +219,11 @@ impl Gens {
                     }
                     other => {
                         let f = Field::of_site(i, other, h, scene)?;
-                        let curved = matches!(f, Field::Ellipse { .. });
+                        let curved = match f {
+                            Field::Ellipse { .. } => true,
+                            Field::Curve(_) => scene.mode() == Mode::MedialAxis,
+                            _ => false,
+                        };
                         g.push(f, i, None, curved);
                     }
                 }
@@ -379,6 +374,18 @@ impl Gens {
 
     /// The generator a diagram label names, or why it is not valid in this mode.
     pub(super) fn parse(&self, g: &Generator) -> Result<usize, String> {
+        // a piece of a closed smooth curve in `medial_axis` mode: the whole curve, whose
+        // branches the checks compare
+        if let Generator::Feature {
+            site,
+            feature: FeatureKind::Piece,
+            ..
+        } = *g
+        {
+            if let Some(whole) = self.whole_curve(site) {
+                return Ok(whole);
+            }
+        }
         match *g {
             Generator::Site(i) => self.lookup.get(&(i, 0, 0)).copied().ok_or_else(|| {
                 if self.lookup.keys().any(|k| k.0 == i) {
@@ -406,6 +413,19 @@ impl Gens {
                     }
                 }),
         }
+    }
+
+    /// Whether generator `g` is a whole curve standing for its pieces
+    /// ([`whole_curve`](Self::whole_curve)).
+    pub(super) fn whole_curve_field(&self, g: usize) -> bool {
+        self.whole_curve(self.labels[g].site()) == Some(g)
+    }
+
+    /// The generator of site `site` when it is one curved field for the whole site in
+    /// a featured mode (an algebraic curve in `medial_axis` mode).
+    fn whole_curve(&self, site: usize) -> Option<usize> {
+        let g = *self.lookup.get(&(site, 0, 0))?;
+        (self.featured && self.curved[g] && matches!(self.fields[g], Field::Curve(_))).then_some(g)
     }
 
     /// A generator's name in messages: `3`, or `3:corner1` / `3:edge0` / `3:piece0`.

@@ -38,7 +38,10 @@
 //!   fails ("label the corner");
 //! * `medial_axis` mode keeps only the even-odd interior of the polygons and of chains
 //!   of open sites that close up (`region.rs`): samples outside fail by their distance
-//!   to it, grid nodes and crossings outside are skipped.
+//!   to it, grid nodes and crossings outside are skipped. A closed algebraic curve
+//!   there is one generator for all the engine's pieces (cut at its vertices): edges and
+//!   vertices are checked on its branches (local feet, `field.rs`), and its ridges'
+//!   grid crossings are where the nearest foot jumps between neighbours.
 //!
 //! One deliberate difference: a crossing whose labels become a corner and its own edge
 //! after that relabelling lies on a zone boundary and is skipped (the Python checker
@@ -95,8 +98,7 @@ impl Default for VerifyOptions {
 /// some 16 bytes a node, 270 MB here.
 pub const MAX_GRID: usize = 4096;
 
-/// Checks `diagram` against `scene`. Refuses scenes the checker cannot evaluate: site
-/// kinds without a distance field here yet (Béziers, B-splines), and
+/// Checks `diagram` against `scene`. Refuses scenes the checker cannot evaluate:
 /// ellipses in `medial_axis` mode. A diagram whose engine floored an epsilon finer than
 /// f64 resolves (`stats.epsilon_floored_from`) is checked at its `stats.resolution`,
 /// with a warning.

@@ -9,36 +9,53 @@
 //! * in `medial_axis` mode the diagram lives in the even-odd interior of all closed
 //!   sites plus the chains of open sites whose ends join up into loops.
 //!
-//! Closed free-form curves bound regions as polygons do.
+//! Closed free-form curves bound regions as polygons do; closed algebraic curves by
+//! the sign of their equation ([`Curve::encloses`]).
 
+use super::curve::Curve;
 use super::parametric::spline_site;
 use crate::geom::bspline::RationalBspline;
 use crate::geom::{segment_distance, Point};
 use crate::scene::{Scene, SiteKind};
 use std::f64::consts::TAU;
 
-/// The even-odd interior of a set of segments.
+/// The even-odd interior of a set of segments and implicit curves.
 #[derive(Clone, Debug)]
 pub(super) struct Region {
     segs: Vec<(Point, Point)>,
     lo: Point,
     hi: Point,
+    curves: Vec<Curve>,
 }
 
 impl Region {
     pub(super) fn new(segs: Vec<(Point, Point)>) -> Self {
         let (lo, hi) = super::field::bounds(&segs);
-        Region { segs, lo, hi }
+        Region {
+            segs,
+            lo,
+            hi,
+            curves: Vec::new(),
+        }
     }
 
     /// Whether the region has no boundary at all.
     pub(super) fn is_empty(&self) -> bool {
-        self.segs.is_empty()
+        self.segs.is_empty() && self.curves.is_empty()
+    }
+
+    /// Even-odd over the segments and over what each curve encloses.
+    pub(super) fn contains(&self, q: Point) -> bool {
+        self.curves
+            .iter()
+            .fold(self.segments_contain(q), |inside, c| {
+                inside != c.encloses(q)
+            })
     }
 
     /// Even-odd test: a segment counts when `min y ≤ q.y < max y` and it crosses the
     /// horizontal line through `q` to the right of `q` (the Python checker's rule).
-    pub(super) fn contains(&self, q: Point) -> bool {
+    fn segments_contain(&self, q: Point) -> bool {
         if !(q.x >= self.lo.x && q.x <= self.hi.x && q.y >= self.lo.y && q.y <= self.hi.y) {
             return false;
         }
@@ -57,9 +74,15 @@ impl Region {
 
     /// The distance from `q` to the boundary.
     pub(super) fn boundary_distance(&self, q: Point) -> f64 {
+        let curves = self
+            .curves
+            .iter()
+            .filter_map(|c| c.foot(q))
+            .map(|f| q.dist(f));
         self.segs
             .iter()
             .map(|&(a, b)| segment_distance(q, a, b))
+            .chain(curves)
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -204,6 +227,13 @@ pub(super) fn medial_region(scene: &Scene) -> Region {
             segs.extend(boundary_segments(&s.kind, sagitta, spacing, scale));
         }
     }
+    let mut curves = Vec::new();
+    for s in scene.sites() {
+        if let SiteKind::Algebraic { equation, clip } = &s.kind {
+            let clip = clip.unwrap_or(scene.domain());
+            curves.push(Curve::new(equation.poly(), clip, spacing));
+        }
+    }
     for i in closed_chains(scene) {
         segs.extend(boundary_segments(
             &scene.sites()[i].kind,
@@ -212,7 +242,10 @@ pub(super) fn medial_region(scene: &Scene) -> Region {
             scale,
         ));
     }
-    Region::new(segs)
+    Region {
+        curves,
+        ..Region::new(segs)
+    }
 }
 
 #[cfg(test)]

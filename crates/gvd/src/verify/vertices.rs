@@ -1,7 +1,7 @@
 //! Check b (vertices): each vertex near a point where its generators tie, found by
 //! Gauss–Newton, and no other site nearer.
 
-use super::field::ridge_error;
+use super::field::{ridge_error, Field};
 use super::report::{fmt_g3, MAX_LIST};
 use super::{finite, Checker};
 use crate::geom::Point;
@@ -73,6 +73,14 @@ impl Checker<'_> {
         // one is left, the vertex ends the feature's ridge at a centre of curvature)
         for &(g, m) in twice {
             let branches = self.fields[g].branches(v, 2.0 * self.tol);
+            // a whole algebraic curve stands for the engine's pieces, cut at its
+            // vertices: a foot on a cut is listed by both pieces there, so m pieces have
+            // m/2 to m distinct feet, and all those found must tie
+            let m = if matches!(self.fields[g], Field::Curve(_)) {
+                branches.len().min(m).max(m.div_ceil(2)).max(2)
+            } else {
+                m
+            };
             e_tie = e_tie.max(ridge_error(v, &branches, m));
         }
         let (e_other, who) = self.intrusion(pos, vmin, gmin, gens);

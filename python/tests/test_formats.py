@@ -210,3 +210,29 @@ def test_segment_cells_site_ids_and_an_svg_drawing():
     bracket = gvd.compute(str(drawing))
     assert "hole-left" in bracket.site_ids
     assert bracket.verify(grid=128)
+
+
+def test_png_bytes_and_file_are_the_svg_picture(tmp_path):
+    import struct
+    import zlib
+
+    d = gvd.compute({"domain": [0, 0, 4, 2], "epsilon": 0.01,
+                     "sites": [{"kind": "point", "p": [1, 1]}, {"kind": "point", "p": [3, 1]}]})
+    png = d.to_png(width=200)
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height, depth, colour = struct.unpack(">IIBB", png[16:26])
+    assert (width, height, depth, colour) == (200, 100, 8, 6)  # 8-bit RGBA, domain's aspect
+    chunks, i = {}, 8
+    while i < len(png):
+        (n,) = struct.unpack(">I", png[i:i + 4])
+        chunks.setdefault(png[i + 4:i + 8], b"")
+        chunks[png[i + 4:i + 8]] += png[i + 8:i + 8 + n]
+        i += 12 + n
+    raw = zlib.decompress(chunks[b"IDAT"])
+    assert len(raw) == height * (1 + 4 * width)
+    assert len(set(raw)) > 2  # not a blank picture
+    out = tmp_path / "d.png"
+    assert d.to_png(out, width=200) is None
+    assert out.read_bytes() == png
+    with pytest.raises(OSError, match="directory"):
+        d.to_png(tmp_path)

@@ -1,5 +1,5 @@
-//! Scene formats in (by extension or `--format`), outputs by extension (`-o`), PNG
-//! pictures (our SVG rendered by resvg) and shell completions.
+//! Scene formats in (by extension or `--format`), outputs by extension (`-o`) and shell
+//! completions.
 
 use anyhow::{bail, Context, Result};
 use gvd::io::Format;
@@ -126,16 +126,4 @@ pub fn output_kind(path: &Path) -> Result<OutputKind> {
             path.display()
         ),
     })
-}
-
-/// The SVG picture rendered to PNG at its own size (`width` and `height` in pixels).
-pub fn svg_to_png(svg: &str) -> Result<Vec<u8>> {
-    use resvg::{tiny_skia, usvg};
-    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
-        .context("cannot read the picture back for PNG")?;
-    let size = tree.size().to_int_size();
-    let mut pixmap =
-        tiny_skia::Pixmap::new(size.width(), size.height()).context("the picture has no pixels")?;
-    resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
-    pixmap.encode_png().context("cannot encode the PNG")
 }

@@ -6,14 +6,13 @@ mod bench_freeform;
 mod bench_implicit;
 mod bench_soft;
 mod formats;
-mod output;
 mod progress;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, CommandFactory, Parser, Subcommand};
-use formats::{output_kind, read_scene_as, svg_to_png, FormatArg, ModeArg, OutputKind};
+use formats::{output_kind, read_scene_as, FormatArg, ModeArg, OutputKind};
 use gvd::VoronoiComplex;
-use output::Outputs;
+use gvd_out::{svg_to_png, Outputs};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

@@ -8,8 +8,9 @@ use gvd::complex::{FeatureKind, Generator};
 use gvd::{Scene, VoronoiComplex};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArrayMethods};
+use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyBytes, PyDict, PyList};
 use std::sync::{Arc, OnceLock};
 
 /// Generators as rows `(site, feature, index)`: feature 0 is the whole site (index −1),
@@ -364,6 +365,39 @@ impl PyDiagram {
             ..Default::default()
         };
         py.detach(|| gvd::io::svg::render_svg(&self.scene, &self.complex, &opts))
+    }
+
+    /// The same picture as `to_svg`, as PNG (through the CLI's renderer): its bytes when
+    /// `path` is None, else written to `path` all or none (a temporary file beside it,
+    /// renamed over it; symbolic links, directories and read-only files are refused)
+    /// and None returned.
+    #[pyo3(signature = (path=None, width=800.0))]
+    fn to_png<'py>(
+        &self,
+        py: Python<'py>,
+        path: Option<std::path::PathBuf>,
+        width: f64,
+    ) -> PyResult<Option<Bound<'py, PyBytes>>> {
+        let opts = gvd::io::svg::SvgOptions {
+            width_px: width,
+            ..Default::default()
+        };
+        let png = py
+            .detach(|| {
+                gvd_out::svg_to_png(&gvd::io::svg::render_svg(&self.scene, &self.complex, &opts))
+            })
+            .map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
+        let Some(path) = path else {
+            return Ok(Some(PyBytes::new(py, &png)));
+        };
+        py.detach(|| {
+            let mut out = gvd_out::Outputs::new(&[]);
+            out.claim(&path)?;
+            out.write(&path, |w| w.write_all(&png))?;
+            out.commit()
+        })
+        .map_err(|e| PyOSError::new_err(format!("{e:#}")))?;
+        Ok(None)
     }
 
     /// Checks the diagram against its scene by brute force (independent of the

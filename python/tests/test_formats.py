@@ -213,15 +213,18 @@ def test_segment_cells_site_ids_and_an_svg_drawing():
 
 
 def test_png_bytes_and_file_are_the_svg_picture(tmp_path):
+    import re
     import struct
     import zlib
 
     d = gvd.compute({"domain": [0, 0, 4, 2], "epsilon": 0.01,
-                     "sites": [{"kind": "point", "p": [1, 1]}, {"kind": "point", "p": [3, 1]}]})
+                     "sites": [{"kind": "point", "at": [1, 1]}, {"kind": "point", "at": [3, 1]}]})
     png = d.to_png(width=200)
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     width, height, depth, colour = struct.unpack(">IIBB", png[16:26])
-    assert (width, height, depth, colour) == (200, 100, 8, 6)  # 8-bit RGBA, domain's aspect
+    svg_size = re.search(r'<svg [^>]*width="(\d+)" height="(\d+)"', d.to_svg(width=200))
+    assert (width, height) == (200, int(svg_size.group(2)))  # the SVG's size (and margin)
+    assert (depth, colour) == (8, 6)  # 8-bit RGBA
     chunks, i = {}, 8
     while i < len(png):
         (n,) = struct.unpack(">I", png[i:i + 4])
@@ -236,3 +239,9 @@ def test_png_bytes_and_file_are_the_svg_picture(tmp_path):
     assert out.read_bytes() == png
     with pytest.raises(OSError, match="directory"):
         d.to_png(tmp_path)
+    link = tmp_path / "link.png"
+    link.symlink_to(out)
+    with pytest.raises(OSError, match="symbolic link"):
+        d.to_png(link, width=100)
+    assert out.read_bytes() == png
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d.png", "link.png"]

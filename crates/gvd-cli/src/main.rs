@@ -6,13 +6,14 @@ mod bench_freeform;
 mod bench_implicit;
 mod bench_soft;
 mod formats;
+mod output;
 mod progress;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, CommandFactory, Parser, Subcommand};
 use formats::{output_kind, read_scene_as, FormatArg, ModeArg, OutputKind};
 use gvd::VoronoiComplex;
-use gvd_out::{svg_to_png, Outputs};
+use output::Outputs;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -380,7 +381,7 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
         };
         let svg = gvd::io::svg::render_svg(&sc, d, &opts);
         if let Some(path) = &args.png {
-            let png = svg_to_png(&svg)?;
+            let png = gvd::io::png::svg_to_png(&svg)?;
             outputs.write(path, |w| w.write_all(&png))?;
         }
         if let Some(path) = &args.svg {

@@ -8,7 +8,7 @@ use gvd::complex::{FeatureKind, Generator};
 use gvd::{Scene, VoronoiComplex};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArrayMethods};
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 use std::sync::{Arc, OnceLock};
@@ -367,10 +367,9 @@ impl PyDiagram {
         py.detach(|| gvd::io::svg::render_svg(&self.scene, &self.complex, &opts))
     }
 
-    /// The same picture as `to_svg`, as PNG (through the CLI's renderer): its bytes when
-    /// `path` is None, else written to `path` all or none (a temporary file beside it,
-    /// renamed over it; symbolic links, directories and read-only files are refused)
-    /// and None returned.
+    /// The same picture as `to_svg`, as PNG: its bytes when `path` is None, else written
+    /// to `path` all or none (a temporary file beside it, renamed over it; symbolic
+    /// links, directories and read-only files are refused) and None returned.
     #[pyo3(signature = (path=None, width=800.0))]
     fn to_png<'py>(
         &self,
@@ -383,20 +382,12 @@ impl PyDiagram {
             ..Default::default()
         };
         let png = py
-            .detach(|| {
-                gvd_out::svg_to_png(&gvd::io::svg::render_svg(&self.scene, &self.complex, &opts))
-            })
-            .map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
+            .detach(|| gvd::io::png::render_png(&self.scene, &self.complex, &opts))
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let Some(path) = path else {
             return Ok(Some(PyBytes::new(py, &png)));
         };
-        py.detach(|| {
-            let mut out = gvd_out::Outputs::new(&[]);
-            out.claim(&path)?;
-            out.write(&path, |w| w.write_all(&png))?;
-            out.commit()
-        })
-        .map_err(|e| PyOSError::new_err(format!("{e:#}")))?;
+        py.detach(|| gvd::io::write_file(&path, &png))?;
         Ok(None)
     }
 

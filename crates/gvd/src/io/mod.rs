@@ -3,13 +3,17 @@
 //! [`crate::SceneBuilder`], with the checks and messages of JSON input.
 
 pub mod dxf;
+mod file;
 pub mod geojson;
 pub mod json;
+#[cfg(feature = "png")]
+pub mod png;
 mod read;
 pub mod svg;
 pub mod svg_in;
 pub mod wkt;
 
+pub use file::write_file;
 pub use json::{read_diagram, write_diagram, write_scene};
 pub use read::{read_scene, Format, ReadOptions};
 pub use svg::{render_svg, SvgOptions};

@@ -63,11 +63,15 @@ def read(
     domain=None,
     epsilon: Optional[float] = None,
     mode: Optional[str] = None,
+    project: Optional[str] = None,
 ) -> Scene:
     """Reads a scene file; the format from ``format`` or the extension (``.json``,
     ``.geojson``, ``.wkt``, ``.dxf``). ``domain``, ``epsilon`` and ``mode`` override the
-    file's."""
-    return Scene.read(_os.fspath(path), format, domain=domain, epsilon=epsilon, mode=mode)
+    file's. ``project="local"`` takes GeoJSON coordinates as longitude and latitude in
+    degrees, projected to metres about the data's centre; the diagram's GeoJSON outputs
+    come back in longitude and latitude."""
+    return Scene.read(_os.fspath(path), format, domain=domain, epsilon=epsilon, mode=mode,
+                      project=project)
 
 
 def as_scene(scene: SceneLike) -> Scene:

@@ -245,3 +245,40 @@ def test_png_bytes_and_file_are_the_svg_picture(tmp_path):
         d.to_png(link, width=100)
     assert out.read_bytes() == png
     assert sorted(p.name for p in tmp_path.iterdir()) == ["d.png", "link.png"]
+
+
+def test_longitude_and_latitude_projected_and_back(tmp_path):
+    sites = [(5.0, 52.0), (5.6, 52.3), (5.2, 52.5)]
+    text = json.dumps({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": None,
+         "geometry": {"type": "MultiPoint", "coordinates": sites}}]})
+    path = tmp_path / "three.geojson"
+    path.write_text(text)
+
+    def haversine(a, b):
+        r = 6371008.8
+        p1, p2 = math.radians(a[1]), math.radians(b[1])
+        dl = math.radians(b[0] - a[0])
+        h = math.sin((p2 - p1) / 2) ** 2 + math.cos(p1) * math.cos(p2) * math.sin(dl / 2) ** 2
+        return 2 * r * math.asin(math.sqrt(h))
+
+    for scene in (gvd.read(path, project="local"), gvd.Scene.from_geojson(text, project="local")):
+        d = gvd.compute(scene)
+        out = json.loads(d.to_geojson())
+        (vertex,) = [f for f in out["features"]
+                     if f["properties"]["type"] == "vertex" and len(f["properties"]["generators"]) == 3]
+        at = vertex["geometry"]["coordinates"]
+        dist = [haversine(at, s) for s in sites]
+        # the projection's distortion within 29 km of the centre bounds the spread: 0.1 m
+        assert max(dist) - min(dist) < 0.1, dist
+        assert abs(vertex["properties"]["clearance"] - max(dist)) < 0.1
+        edges = [f for f in out["features"] if f["properties"]["type"] == "edge"]
+        for e in edges:
+            for x, y in e["geometry"]["coordinates"]:
+                assert 4.8 < x < 5.8 and 51.9 < y < 52.6
+        offset = json.loads(d.offset(1000.0).to_geojson())  # metres
+        for f in offset["features"]:
+            for x, y in f["geometry"]["coordinates"]:
+                assert 4.9 < x < 5.7 and 51.9 < y < 52.6
+    with pytest.raises(gvd.OptionError, match="project"):
+        gvd.read(path, project="utm")

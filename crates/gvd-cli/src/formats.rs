@@ -49,11 +49,12 @@ fn format_of(path: &Path, given: Option<FormatArg>) -> Result<Format> {
 }
 
 /// Reads a scene in its format, warning on stderr about unknown fields and entities not
-/// read; `mode` overrides the file's.
+/// read; `mode` overrides the file's, `project` says how coordinates are taken.
 pub fn read_scene_as(
     path: &Path,
     format: Option<FormatArg>,
     mode: Option<gvd::Mode>,
+    project: ProjectArg,
 ) -> Result<Scene> {
     let format = format_of(path, format)?;
     let mut data = Vec::new();
@@ -66,6 +67,10 @@ pub fn read_scene_as(
     }
     let options = gvd::io::ReadOptions {
         mode,
+        project: match project {
+            ProjectArg::None => gvd::io::Projection::None,
+            ProjectArg::Local => gvd::io::Projection::Local,
+        },
         ..Default::default()
     };
     let (scene, warnings) = gvd::io::read_scene(&data, format, &options)
@@ -74,6 +79,15 @@ pub fn read_scene_as(
         eprintln!("gvd: warning: {}: {w}", path.display());
     }
     Ok(scene)
+}
+
+/// How a scene's coordinates are taken (`--project`).
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum ProjectArg {
+    /// Planar, as they are.
+    None,
+    /// Longitude and latitude, projected about the data's centre.
+    Local,
 }
 
 /// A mode named on the command line.

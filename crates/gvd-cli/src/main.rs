@@ -11,7 +11,7 @@ mod progress;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, CommandFactory, Parser, Subcommand};
-use formats::{output_kind, read_scene_as, FormatArg, ModeArg, OutputKind};
+use formats::{output_kind, read_scene_as, FormatArg, ModeArg, OutputKind, ProjectArg};
 use gvd::VoronoiComplex;
 use output::Outputs;
 use std::io::Read;
@@ -65,6 +65,10 @@ struct ComputeArgs {
     /// The mode, instead of the scene's (GeoJSON, WKT and DXF have none: voronoi).
     #[arg(long, value_enum)]
     mode: Option<ModeArg>,
+    /// GeoJSON in longitude and latitude (degrees): `local` projects them to metres
+    /// (azimuthal equidistant about the data's centre) and GeoJSON outputs back.
+    #[arg(long, value_enum, default_value = "none")]
+    project: ProjectArg,
     /// Write the diagram here (JSON; `-` for standard output).
     #[arg(long)]
     json: Option<PathBuf>,
@@ -151,6 +155,10 @@ struct OffsetArgs {
     /// The mode, instead of the scene's (medial_axis: the offsets of a pocket).
     #[arg(long, value_enum)]
     mode: Option<ModeArg>,
+    /// GeoJSON in longitude and latitude (degrees): `local` projects them to metres
+    /// (azimuthal equidistant about the data's centre) and GeoJSON outputs back.
+    #[arg(long, value_enum, default_value = "none")]
+    project: ProjectArg,
     /// Write the curves here as DXF LINE and ARC entities.
     #[arg(long)]
     dxf: Option<PathBuf>,
@@ -180,6 +188,10 @@ struct VerifyArgs {
     /// The mode, instead of the scene's (as given to `gvd compute`).
     #[arg(long, value_enum)]
     mode: Option<ModeArg>,
+    /// GeoJSON in longitude and latitude (degrees): `local` projects them to metres
+    /// (azimuthal equidistant about the data's centre) and GeoJSON outputs back.
+    #[arg(long, value_enum, default_value = "none")]
+    project: ProjectArg,
     /// Completeness grid size (N × N, 2 ≤ N ≤ 4096).
     #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u64).range(2..=gvd::verify::MAX_GRID as u64))]
     grid: u64,
@@ -291,7 +303,12 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
             .build_global()
             .context("cannot start the worker threads")?;
     }
-    let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
+    let sc = read_scene_as(
+        &args.scene,
+        args.format,
+        args.mode.map(Into::into),
+        args.project,
+    )?;
     let (control, bar) = args.run.control();
     let options = gvd::Options {
         engine: args.engine.into(),
@@ -346,10 +363,19 @@ fn compute(mut args: ComputeArgs) -> Result<ExitCode> {
         .max_inscribed_circle()
         .filter(|_| sc.mode() == gvd::Mode::MedialAxis)
     {
-        eprintln!(
-            "gvd: largest inscribed circle: centre ({}, {}), radius {r}",
-            c.x, c.y
-        );
+        match sc.projection() {
+            Some(p) => {
+                let c = p.inverse(c);
+                eprintln!(
+                    "gvd: largest inscribed circle: centre (longitude {}, latitude {}), radius {r} m",
+                    c.x, c.y
+                )
+            }
+            None => eprintln!(
+                "gvd: largest inscribed circle: centre ({}, {}), radius {r}",
+                c.x, c.y
+            ),
+        }
     }
     if let Some(p) = d.stats.get("pruning") {
         eprintln!(
@@ -412,7 +438,12 @@ fn offset(args: OffsetArgs) -> Result<ExitCode> {
         true,
     )?;
     gvd::offset::check_distance(args.distance)?;
-    let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
+    let sc = read_scene_as(
+        &args.scene,
+        args.format,
+        args.mode.map(Into::into),
+        args.project,
+    )?;
     let (control, bar) = args.run.control();
     let options = gvd::Options {
         control,
@@ -446,7 +477,7 @@ fn offset(args: OffsetArgs) -> Result<ExitCode> {
         outputs.write(path, |w| w.write_all(text.as_bytes()))?;
     }
     if let Some(path) = &args.geojson {
-        let text = gvd::io::geojson::write_offset(&off, sc.epsilon());
+        let text = gvd::io::geojson::write_offset(&sc, &off, sc.epsilon());
         outputs.write(path, |w| w.write_all(text.as_bytes()))?;
     }
     outputs.commit()?;
@@ -455,7 +486,12 @@ fn offset(args: OffsetArgs) -> Result<ExitCode> {
 
 /// `gvd verify`: the brute-force check; exit 1 when the diagram fails it.
 fn verify(args: VerifyArgs) -> Result<ExitCode> {
-    let sc = read_scene_as(&args.scene, args.format, args.mode.map(Into::into))?;
+    let sc = read_scene_as(
+        &args.scene,
+        args.format,
+        args.mode.map(Into::into),
+        args.project,
+    )?;
     let text = read_text(&args.diagram)?;
     let d: VoronoiComplex = gvd::io::json::read_diagram(&text)
         .with_context(|| format!("{}", args.diagram.display()))?;

@@ -229,3 +229,65 @@ fn completions_for_every_shell() {
         );
     }
 }
+
+#[test]
+fn longitude_and_latitude_projected_and_back() {
+    let input = scratch("lonlat.geojson");
+    std::fs::write(
+        &input,
+        r#"{"type": "FeatureCollection", "features": [{"type": "Feature", "properties": null,
+            "geometry": {"type": "MultiPoint", "coordinates": [[5.0, 52.0], [5.6, 52.3], [5.2, 52.5]]}}]}"#,
+    )
+    .unwrap();
+    let (planar, projected) = (
+        scratch("lonlat-planar.geojson"),
+        scratch("lonlat-out.geojson"),
+    );
+    let vertex = |out: &Path| -> (Vec<f64>, f64) {
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+        let f = &v["features"][0];
+        assert_eq!(f["properties"]["type"], "vertex");
+        let at = f["geometry"]["coordinates"].as_array().unwrap();
+        let at = at.iter().map(|c| c.as_f64().unwrap()).collect();
+        (at, f["properties"]["clearance"].as_f64().unwrap())
+    };
+    ok(&gvd(&[
+        "compute".as_ref(),
+        input.as_os_str(),
+        "--geojson".as_ref(),
+        planar.as_os_str(),
+    ]));
+    ok(&gvd(&[
+        "compute".as_ref(),
+        input.as_os_str(),
+        "--project".as_ref(),
+        "local".as_ref(),
+        "--geojson".as_ref(),
+        projected.as_os_str(),
+    ]));
+    let (p, planar_clearance) = vertex(&planar);
+    let (q, clearance) = vertex(&projected);
+    // both in degrees among the sites, apart: the plane of degrees is not the sphere's
+    for v in [&p, &q] {
+        assert!(
+            (5.0..5.6).contains(&v[0]) && (52.0..52.5).contains(&v[1]),
+            "{v:?}"
+        );
+    }
+    assert!(
+        (p[0] - q[0]).abs().max((p[1] - q[1]).abs()) > 0.05,
+        "{p:?} {q:?}"
+    );
+    assert!(planar_clearance < 1.0, "{planar_clearance}");
+    assert!((clearance - 29_213.77).abs() < 1.0, "{clearance}");
+    let wkt = repo("examples/scenes/pocket.json");
+    let out = gvd(&[
+        "compute".as_ref(),
+        wkt.as_os_str(),
+        "--project".as_ref(),
+        "local".as_ref(),
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("GeoJSON only"));
+}

@@ -82,7 +82,11 @@ impl PyOffset {
     /// the scene's epsilon).
     #[pyo3(signature = (tolerance=None))]
     fn to_geojson(&self, tolerance: Option<f64>) -> String {
-        gvd::io::geojson::write_offset(&self.offset, tolerance.unwrap_or(self.scene.epsilon()))
+        gvd::io::geojson::write_offset(
+            &self.scene,
+            &self.offset,
+            tolerance.unwrap_or(self.scene.epsilon()),
+        )
     }
 
     /// The curves as DXF `LINE` and `ARC` entities (what CAM software opens).

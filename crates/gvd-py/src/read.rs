@@ -3,7 +3,7 @@
 
 use crate::errors::{option_error, scene_error, to_py};
 use crate::scene::{extract_box, parse_mode, PyScene};
-use gvd::io::{Format, ReadOptions};
+use gvd::io::{Format, Projection, ReadOptions};
 use pyo3::prelude::*;
 use std::path::Path;
 
@@ -26,8 +26,21 @@ pub fn format_of(name: Option<&str>, path: Option<&Path>) -> PyResult<Format> {
     }
 }
 
+/// How coordinates are taken: `None` or `"none"` planar, `"local"` longitude and latitude
+/// projected about the data's centre.
+fn parse_projection(name: Option<&str>) -> PyResult<Projection> {
+    match name {
+        None | Some("none") => Ok(Projection::None),
+        Some("local") => Ok(Projection::Local),
+        Some(other) => Err(option_error(
+            "project",
+            format!("unknown projection '{other}' (known: none, local)"),
+        )),
+    }
+}
+
 /// Reads a scene from `data` in `format`; `domain`, `epsilon` and `mode` override the
-/// file's.
+/// file's, `project` says how its coordinates are taken.
 pub fn read(
     py: Python<'_>,
     data: &[u8],
@@ -35,8 +48,10 @@ pub fn read(
     domain: Option<&Bound<'_, PyAny>>,
     epsilon: Option<f64>,
     mode: Option<&str>,
+    project: Option<&str>,
 ) -> PyResult<PyScene> {
     let options = ReadOptions {
+        project: parse_projection(project)?,
         domain: domain
             .map(|d| extract_box(d, |m| scene_error("domain", m)))
             .transpose()?,

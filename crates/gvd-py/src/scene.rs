@@ -183,15 +183,18 @@ impl PyScene {
     /// fields are warned about (`UserWarning`) and ignored.
     #[staticmethod]
     fn from_json(py: Python<'_>, text: &str) -> PyResult<PyScene> {
-        read(py, text.as_bytes(), Format::Json, None, None, None)
+        read(py, text.as_bytes(), Format::Json, None, None, None, None)
     }
 
     /// Reads a scene file: the format from `format` (`json`, `geojson`, `wkt`, `dxf`) or
     /// the extension. `domain`, `epsilon` and `mode` override the file's; formats
     /// without a domain get the sites' bounding box grown by a tenth of its longest
-    /// side. Reader warnings (DXF entities not read) are `UserWarning`s.
+    /// side. `project="local"` takes GeoJSON coordinates as longitude and latitude in
+    /// degrees, projected to metres about the data's centre (azimuthal equidistant); the
+    /// diagram's GeoJSON comes back in longitude and latitude. Reader warnings (DXF
+    /// entities not read) are `UserWarning`s.
     #[staticmethod]
-    #[pyo3(signature = (path, format=None, *, domain=None, epsilon=None, mode=None))]
+    #[pyo3(signature = (path, format=None, *, domain=None, epsilon=None, mode=None, project=None))]
     fn read(
         py: Python<'_>,
         path: std::path::PathBuf,
@@ -199,26 +202,36 @@ impl PyScene {
         domain: Option<&Bound<'_, PyAny>>,
         epsilon: Option<f64>,
         mode: Option<&str>,
+        project: Option<&str>,
     ) -> PyResult<PyScene> {
         let format = format_of(format, Some(&path))?;
         let data = std::fs::read(&path).map_err(|e| {
             pyo3::exceptions::PyOSError::new_err(format!("cannot read {}: {e}", path.display()))
         })?;
-        read(py, &data, format, domain, epsilon, mode)
+        read(py, &data, format, domain, epsilon, mode, project)
     }
 
     /// Reads a scene from GeoJSON text (Point, MultiPoint → points; LineString →
-    /// polylines; Polygon, MultiPolygon → polygons with holes).
+    /// polylines; Polygon, MultiPolygon → polygons with holes); `project` as for `read`.
     #[staticmethod]
-    #[pyo3(signature = (text, *, domain=None, epsilon=None, mode=None))]
+    #[pyo3(signature = (text, *, domain=None, epsilon=None, mode=None, project=None))]
     fn from_geojson(
         py: Python<'_>,
         text: &str,
         domain: Option<&Bound<'_, PyAny>>,
         epsilon: Option<f64>,
         mode: Option<&str>,
+        project: Option<&str>,
     ) -> PyResult<PyScene> {
-        read(py, text.as_bytes(), Format::GeoJson, domain, epsilon, mode)
+        read(
+            py,
+            text.as_bytes(),
+            Format::GeoJson,
+            domain,
+            epsilon,
+            mode,
+            project,
+        )
     }
 
     /// Reads a scene from WKT text (one geometry per line).
@@ -231,7 +244,15 @@ impl PyScene {
         epsilon: Option<f64>,
         mode: Option<&str>,
     ) -> PyResult<PyScene> {
-        read(py, text.as_bytes(), Format::Wkt, domain, epsilon, mode)
+        read(
+            py,
+            text.as_bytes(),
+            Format::Wkt,
+            domain,
+            epsilon,
+            mode,
+            None,
+        )
     }
 
     /// Reads a scene from ASCII DXF (LINE, ARC, CIRCLE, POINT, LWPOLYLINE, POLYLINE).
@@ -244,7 +265,7 @@ impl PyScene {
         epsilon: Option<f64>,
         mode: Option<&str>,
     ) -> PyResult<PyScene> {
-        read(py, data, Format::Dxf, domain, epsilon, mode)
+        read(py, data, Format::Dxf, domain, epsilon, mode, None)
     }
 
     /// A scene from a shapely geometry (or anything with `__geo_interface__`: points,
@@ -261,7 +282,15 @@ impl PyScene {
     ) -> PyResult<PyScene> {
         let gi = geometry.getattr("__geo_interface__")?;
         let text: String = py.import("json")?.call_method1("dumps", (gi,))?.extract()?;
-        read(py, text.as_bytes(), Format::GeoJson, domain, epsilon, mode)
+        read(
+            py,
+            text.as_bytes(),
+            Format::GeoJson,
+            domain,
+            epsilon,
+            mode,
+            None,
+        )
     }
 
     /// The scene as JSON text (`docs/SCENE_FORMAT.md`), which `Scene.from_json` reads

@@ -8,18 +8,26 @@
 //! (`[xmin, ymin, xmax, ymax]`), `epsilon` and `mode` set the scene's, under the
 //! caller's [`ReadOptions`].
 //!
+//! With [`ReadOptions::project`] set to [`Projection::Local`], coordinates are longitude
+//! and latitude in degrees, projected to metres by the [`LocalProjection`] about the
+//! centre of their bounding box (a `domain` is in degrees too, and becomes the box in
+//! metres holding its projection; `epsilon` and `radius` are in metres). The scene
+//! carries the projection, and the writers here take every coordinate back to
+//! longitude and latitude; clearances and offset distances stay in metres.
+//!
 //! Out: the diagram as a `FeatureCollection` of vertices (`Point`s with their
 //! `generators`, `site_ids` and `clearance`), edges (`LineString`s with `generators`
 //! and the end vertices `from`, `to`) and cells (`Polygon`s with `site` and `site_id`),
 //! every feature with a `type` property (`vertex`, `edge`, `cell`); offsets as
 //! `LineString`s, their arcs as chords within a tolerance.
 
+use super::project::{LocalProjection, Projection};
 use super::read::{build_scene, mode_named, open_ring, FileValues, Found, ReadOptions};
 use crate::complex::VoronoiComplex;
 use crate::error::Error;
 use crate::geom::{Aabb, Point};
 use crate::offset::Offset;
-use crate::scene::{Scene, Site};
+use crate::scene::{Scene, Site, SiteKind};
 use geojson::{GeoJson, Geometry, GeometryValue, Position};
 use serde_json::{json, Map, Value};
 
@@ -42,7 +50,52 @@ pub fn read_scene(text: &str, options: &ReadOptions) -> Result<(Scene, Vec<Strin
             }
         }
     }
-    Ok((build_scene(found, file, options)?, Vec::new()))
+    if options.project == Projection::None {
+        return Ok((build_scene(found, file, options)?, Vec::new()));
+    }
+    let projection = project(&mut found)?;
+    let options = ReadOptions {
+        domain: options.domain.map(|d| projection.forward_box(&d)),
+        ..options.clone()
+    };
+    file.domain = file.domain.map(|d| projection.forward_box(&d));
+    let scene = build_scene(found, file, &options)?;
+    Ok((scene.with_projection(Some(projection)), Vec::new()))
+}
+
+/// The points of the sites GeoJSON gives (points, circles' centres, polylines,
+/// polygons).
+fn site_points(kind: &mut SiteKind) -> Vec<&mut Point> {
+    match kind {
+        SiteKind::Point { at, .. } => vec![at],
+        SiteKind::Circle { center, .. } => vec![center],
+        SiteKind::Polyline { points } => points.iter_mut().collect(),
+        SiteKind::Polygon { rings } => rings.iter_mut().flatten().collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// Projects the sites' longitudes and latitudes to metres about the centre of their
+/// bounding box; returns the projection.
+fn project(found: &mut [Found]) -> Result<LocalProjection, Error> {
+    let mut lo = Point::new(f64::INFINITY, f64::INFINITY);
+    let mut hi = Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for f in found.iter_mut() {
+        for p in site_points(&mut f.site.kind) {
+            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+        }
+    }
+    if lo.x > hi.x {
+        return Err(Error::scene("sites", "the file has no site to compute"));
+    }
+    let projection = LocalProjection::about(&Aabb::new(lo, hi))?;
+    for f in found.iter_mut() {
+        for p in site_points(&mut f.site.kind) {
+            *p = projection.forward(*p);
+        }
+    }
+    Ok(projection)
 }
 
 /// The scene-level values among a collection's foreign members.
@@ -158,17 +211,19 @@ fn geometry(
     Ok(())
 }
 
-fn xy(p: &Point) -> Value {
+/// A position: the point as it is, or back in longitude and latitude.
+fn xy(p: &Point, projection: Option<&LocalProjection>) -> Value {
+    let p = projection.map_or(*p, |m| m.inverse(*p));
     json!([p.x, p.y])
 }
 
-/// A closed GeoJSON ring (first point repeated last).
-fn closed_ring(ring: &[Point]) -> Value {
-    let mut pts: Vec<Value> = ring.iter().map(xy).collect();
-    if let Some(first) = ring.first() {
-        pts.push(xy(first));
+/// A GeoJSON line (closed: the first point repeated last).
+fn line(pts: &[Point], closed: bool, projection: Option<&LocalProjection>) -> Value {
+    let mut out: Vec<Value> = pts.iter().map(|p| xy(p, projection)).collect();
+    if let (true, Some(first)) = (closed, out.first()) {
+        out.push(first.clone());
     }
-    Value::Array(pts)
+    Value::Array(out)
 }
 
 fn feature_of(geometry: Value, properties: Value) -> Value {
@@ -194,13 +249,14 @@ pub fn write_diagram(scene: &Scene, diagram: &VoronoiComplex) -> String {
         })
         .collect()
     };
+    let proj = scene.projection();
     let clearances = diagram.clearances(scene);
     let mut features =
         Vec::with_capacity(diagram.vertices.len() + diagram.edges.len() + diagram.cells.len());
     for (k, v) in diagram.vertices.iter().enumerate() {
         let c = clearances[k];
         features.push(feature_of(
-            json!({"type": "Point", "coordinates": xy(&v.at)}),
+            json!({"type": "Point", "coordinates": xy(&v.at, proj)}),
             json!({
                 "type": "vertex",
                 "index": k,
@@ -212,7 +268,7 @@ pub fn write_diagram(scene: &Scene, diagram: &VoronoiComplex) -> String {
     }
     for (k, e) in diagram.edges.iter().enumerate() {
         features.push(feature_of(
-            json!({"type": "LineString", "coordinates": e.points.iter().map(xy).collect::<Vec<_>>()}),
+            json!({"type": "LineString", "coordinates": line(&e.points, false, proj)}),
             json!({
                 "type": "edge",
                 "index": k,
@@ -224,7 +280,7 @@ pub fn write_diagram(scene: &Scene, diagram: &VoronoiComplex) -> String {
         ));
     }
     for c in &diagram.cells {
-        let rings: Vec<Value> = c.rings.iter().map(|r| closed_ring(r)).collect();
+        let rings: Vec<Value> = c.rings.iter().map(|r| line(r, true, proj)).collect();
         features.push(feature_of(
             json!({"type": "Polygon", "coordinates": rings}),
             json!({
@@ -237,15 +293,16 @@ pub fn write_diagram(scene: &Scene, diagram: &VoronoiComplex) -> String {
     collection(features)
 }
 
-/// Writes offset curves as GeoJSON `LineString`s (closed curves repeat their first
-/// point), arcs as chords within `tolerance`; properties `type` (`offset`), `distance`
-/// and `closed`.
-pub fn write_offset(offset: &Offset, tolerance: f64) -> String {
+/// Writes offset curves of `scene`'s diagram as GeoJSON `LineString`s (closed curves
+/// repeat their first point), arcs as chords within `tolerance`; properties `type`
+/// (`offset`), `distance` and `closed`.
+pub fn write_offset(scene: &Scene, offset: &Offset, tolerance: f64) -> String {
+    let proj = scene.projection();
     let features = offset
         .curves
         .iter()
         .map(|c| {
-            let pts: Vec<Value> = c.polyline(tolerance).iter().map(xy).collect();
+            let pts = line(&c.polyline(tolerance), false, proj);
             feature_of(
                 json!({"type": "LineString", "coordinates": pts}),
                 json!({"type": "offset", "distance": offset.distance, "closed": c.closed}),
@@ -351,5 +408,108 @@ mod tests {
             .unwrap();
         assert!((c - d.vertices[0].at.dist(Point::new(0.0, 0.0))).abs() < 1e-12);
         assert!(text.contains("\"site_id\":\"o\""));
+    }
+
+    /// The great-circle distance in metres between two (lon, lat) points in degrees.
+    fn haversine(a: Point, b: Point) -> f64 {
+        let (p1, p2) = (a.y.to_radians(), b.y.to_radians());
+        let (dp, dl) = (p2 - p1, (b.x - a.x).to_radians());
+        let h = (dp / 2.0).sin().powi(2) + p1.cos() * p2.cos() * (dl / 2.0).sin().powi(2);
+        2.0 * super::super::project::EARTH_RADIUS_M * h.sqrt().asin()
+    }
+
+    #[test]
+    fn longitude_and_latitude_in_and_back_out() {
+        let sites = [
+            Point::new(5.0, 52.0),
+            Point::new(5.6, 52.3),
+            Point::new(5.2, 52.5),
+        ];
+        let text = format!(
+            r#"{{"type": "FeatureCollection", "features": [{}]}}"#,
+            sites
+                .iter()
+                .map(|p| format!(
+                    r#"{{"type": "Feature", "properties": null, "geometry": {{"type": "Point", "coordinates": [{}, {}]}}}}"#,
+                    p.x, p.y
+                ))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        // the Voronoi vertex of the three, in longitude and latitude, and its clearance
+        let vertex = |project: Projection| -> (Point, f64) {
+            let options = ReadOptions {
+                project,
+                ..Default::default()
+            };
+            let (scene, _) = read_scene(&text, &options).unwrap();
+            let d = crate::compute(&scene, &Default::default()).unwrap();
+            let k = d
+                .vertices
+                .iter()
+                .position(|v| {
+                    let mut s: Vec<usize> = v.sites.iter().map(|g| g.site()).collect();
+                    s.dedup();
+                    s.len() == 3
+                })
+                .unwrap();
+            let GeoJson::FeatureCollection(fc) = write_diagram(&scene, &d).parse().unwrap() else {
+                panic!("not a collection")
+            };
+            let f = &fc.features[k];
+            let Some(GeometryValue::Point { coordinates }) =
+                f.geometry.as_ref().map(|g| g.value.clone())
+            else {
+                panic!("not a point")
+            };
+            let c = f.properties.as_ref().unwrap()["clearance"]
+                .as_f64()
+                .unwrap();
+            (Point::new(coordinates[0], coordinates[1]), c)
+        };
+        let (v, clearance) = vertex(Projection::Local);
+        let d: Vec<f64> = sites.iter().map(|s| haversine(v, *s)).collect();
+        // Within the cap of angle c about the centre the projection stretches lengths
+        // by 1 to c / sin c < 1 + c²/6, so great-circle distances are within a factor
+        // 1 + c²/6 of the plane's (equal there): c < 0.0045 rad here, 3.4e-6 of the
+        // 29 km clearance, 0.1 m; the rest (f64, the engine's exact vertex) is far below
+        // 1e-6 m.
+        let centre = Point::new(5.3, 52.25);
+        let c = sites
+            .iter()
+            .chain([&v])
+            .map(|p| haversine(centre, *p) / super::super::project::EARTH_RADIUS_M)
+            .fold(0.0, f64::max);
+        let tol = clearance * c * c / 6.0 + 1e-6;
+        for (i, di) in d.iter().enumerate() {
+            assert!(
+                di - clearance <= 1e-6 && clearance - di <= tol,
+                "site {i}: {di} m vs clearance {clearance} m"
+            );
+            for dj in &d[i + 1..] {
+                assert!((di - dj).abs() <= tol, "{d:?} (tolerance {tol} m)");
+            }
+        }
+        assert!(tol < 0.2, "{tol}");
+        // the same points read as planar degrees: their vertex is far from equidistant
+        let (w, _) = vertex(Projection::None);
+        let e: Vec<f64> = sites.iter().map(|s| haversine(w, *s)).collect();
+        assert!(
+            (e[0] - e[1]).abs().max((e[0] - e[2]).abs()) > 100.0,
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn the_projection_is_refused_near_a_pole() {
+        let text = r#"{"type": "FeatureCollection", "features": [
+            {"type": "Feature", "properties": null, "geometry": {"type": "MultiPoint", "coordinates": [[0, 80], [10, 90]]}}]}"#;
+        let options = ReadOptions {
+            project: Projection::Local,
+            ..Default::default()
+        };
+        let e = read_scene(text, &options).unwrap_err().to_string();
+        assert!(e.contains("poles"), "{e}");
+        assert!(read_scene(text, &ReadOptions::default()).is_ok());
     }
 }

@@ -8,6 +8,7 @@ pub mod geojson;
 pub mod json;
 #[cfg(feature = "png")]
 pub mod png;
+pub mod project;
 mod read;
 pub mod svg;
 pub mod svg_in;
@@ -15,5 +16,6 @@ pub mod wkt;
 
 pub use file::write_file;
 pub use json::{read_diagram, write_diagram, write_scene};
+pub use project::{LocalProjection, Projection};
 pub use read::{read_scene, Format, ReadOptions};
 pub use svg::{render_svg, SvgOptions};

@@ -54,6 +54,10 @@ pub struct ReadOptions {
     pub epsilon: Option<f64>,
     /// The mode, instead of the file's or `voronoi`.
     pub mode: Option<Mode>,
+    /// How the file's coordinates are taken: planar, or (GeoJSON only) longitude and
+    /// latitude projected to metres ([`super::Projection::Local`]; the scene then
+    /// carries its [`super::LocalProjection`] and the GeoJSON writers project back).
+    pub project: super::Projection,
 }
 
 /// Reads a scene in `format` from `data`; returns it with the reader's warnings (unknown
@@ -67,6 +71,12 @@ pub fn read_scene(
         std::str::from_utf8(data)
             .map_err(|e| Error::Json(format!("the file is not UTF-8 text: {e}")))
     };
+    if options.project != super::Projection::None && format != Format::GeoJson {
+        return Err(Error::InvalidOption {
+            option: "project".into(),
+            message: "longitude and latitude are read from GeoJSON only".into(),
+        });
+    }
     match format {
         Format::Json => read_json(text()?, options),
         Format::GeoJson => super::geojson::read_scene(text()?, options),

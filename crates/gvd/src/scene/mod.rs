@@ -335,6 +335,7 @@ pub struct Scene {
     epsilon: f64,
     mode: Mode,
     sites: Vec<Site>,
+    projection: Option<crate::io::LocalProjection>,
 }
 
 impl Scene {
@@ -401,6 +402,17 @@ impl Scene {
     /// The same scene in another mode (every mode accepts the same sites).
     pub fn with_mode(mut self, mode: Mode) -> Scene {
         self.mode = mode;
+        self
+    }
+    /// The projection that took the scene's longitudes and latitudes to its planar
+    /// coordinates (metres), when it was read so; the GeoJSON writers project back.
+    pub fn projection(&self) -> Option<&crate::io::LocalProjection> {
+        self.projection.as_ref()
+    }
+    /// The same scene, its coordinates declared the image of longitudes and latitudes
+    /// under `projection` (or planar, for `None`).
+    pub fn with_projection(mut self, projection: Option<crate::io::LocalProjection>) -> Scene {
+        self.projection = projection;
         self
     }
 }
@@ -472,6 +484,7 @@ impl SceneBuilder {
             domain: self.domain,
             mode: self.mode,
             sites: self.sites,
+            projection: None,
         })
     }
 }

@@ -180,7 +180,8 @@ def test_timeout_stops_the_run():
     with pytest.raises(gvd.BudgetError) as e:
         gvd.compute(s, engine="subdivision", timeout=0.01)
     assert e.value.what == "seconds"
-    assert time.monotonic() - start < 0.5
+    # the whole run takes seconds; a stop within 2 s, on a loaded 2-core machine too
+    assert time.monotonic() - start < 2.0
     with pytest.raises(gvd.OptionError) as e:
         gvd.compute(s, timeout=0.0)
     assert e.value.option == "timeout"

@@ -8,20 +8,9 @@
 //! `/dev/stdout`) is written in place, never replaced; `-` is standard output.
 
 use anyhow::{bail, Context, Result};
+use gvd::io::file::{temp_beside, Target};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-
-/// Where one output goes.
-enum Target {
-    Stdout,
-    /// A FIFO or a device: opened and written, never renamed over.
-    InPlace(PathBuf),
-    /// A regular file (or a new one): replaced by renaming a temporary file over it.
-    File {
-        path: PathBuf,
-        mode: Option<std::fs::Permissions>,
-    },
-}
 
 /// An output written to its temporary file (or held, for a stream), not yet in place.
 enum Ready {
@@ -75,24 +64,8 @@ impl Outputs {
     ) -> Result<()> {
         let fail = || format!("cannot write {}", path.display());
         let ready = match target(path)? {
-            Target::File { path, mode } => {
-                let dir = match path.parent() {
-                    Some(d) if !d.as_os_str().is_empty() => d,
-                    _ => Path::new("."),
-                };
-                let mut builder = tempfile::Builder::new();
-                let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-                let prefix = format!(".{}.", name.as_deref().unwrap_or("gvd"));
-                builder.prefix(&prefix);
-                builder.suffix(".tmp");
-                #[cfg(unix)]
-                builder.permissions(mode.unwrap_or_else(|| {
-                    // rw-rw-rw- less the umask (applied at creation), like any new file
-                    std::os::unix::fs::PermissionsExt::from_mode(0o666)
-                }));
-                #[cfg(not(unix))]
-                let _ = mode;
-                let mut tmp = builder.tempfile_in(dir).with_context(fail)?;
+            Some(Target::File { path, mode }) => {
+                let mut tmp = temp_beside(&path, mode.as_ref()).with_context(fail)?;
                 {
                     let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file_mut());
                     write(&mut w).and_then(|_| w.flush()).with_context(fail)?;
@@ -103,7 +76,7 @@ impl Outputs {
                 let mut buf = Vec::new();
                 write(&mut buf).with_context(fail)?;
                 match stream {
-                    Target::InPlace(path) => Ready::InPlace(path, buf),
+                    Some(Target::InPlace(path)) => Ready::InPlace(path, buf),
                     _ => Ready::Stdout(buf),
                 }
             }
@@ -140,31 +113,13 @@ impl Outputs {
     }
 }
 
-/// What kind of target `path` is, refusing the paths of the module's rules.
-fn target(path: &Path) -> Result<Target> {
-    let shown = path.display();
+/// What kind of target `path` is (`None`: standard output), refusing the paths of the
+/// module's rules.
+fn target(path: &Path) -> Result<Option<Target>> {
     if path.as_os_str() == "-" {
-        return Ok(Target::Stdout);
+        return Ok(None);
     }
-    match std::fs::symlink_metadata(path) {
-        Ok(m) if m.file_type().is_symlink() => bail!(
-            "output {shown} is a symbolic link: refusing to write through it (give the path it points to)"
-        ),
-        Ok(m) if m.is_dir() => bail!("output {shown} is a directory"),
-        Ok(m) if m.is_file() && m.permissions().readonly() => {
-            bail!("output {shown} is read-only: refusing to replace it")
-        }
-        Ok(m) if m.is_file() => Ok(Target::File {
-            path: path.to_path_buf(),
-            mode: Some(m.permissions()),
-        }),
-        Ok(_) => Ok(Target::InPlace(path.to_path_buf())),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Target::File {
-            path: path.to_path_buf(),
-            mode: None,
-        }),
-        Err(e) => Err(e).with_context(|| format!("cannot write {shown}")),
-    }
+    Ok(Some(gvd::io::file::target(path)?))
 }
 
 /// A path naming the same file whatever way it is written: the canonical path of an

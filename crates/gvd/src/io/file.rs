@@ -1,99 +1,97 @@
-//! One output file written safely: the whole file or nothing, never through a link.
+//! Output files written safely: the whole file or nothing, never through a link.
+//!
+//! Refused: a symbolic link (never followed, so a planted link cannot redirect the
+//! write), a directory, a read-only file. A path that is not a regular file (a FIFO,
+//! `/dev/null`) is written in place, never replaced. A regular file (or a new one) is
+//! replaced by a temporary file created exclusively beside it (`O_EXCL`, a random name)
+//! and renamed over it, so a reader never sees half a file and a failure leaves it as
+//! it was; an existing file keeps its permissions.
 
+use std::fs::Permissions;
 use std::io::{Error, ErrorKind, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-/// Writes `bytes` to `path` all or none, by the rules of the `gvd` command's outputs: a
-/// temporary file is created exclusively (`O_EXCL`) beside `path`, filled, then renamed
-/// over it, so a reader never sees half a file and a failure leaves `path` as it was;
-/// an existing file keeps its permissions.
-///
-/// Refused: a symbolic link (never followed, so a planted link cannot redirect the
-/// write), a directory, a read-only file. A path that is not a regular file (a FIFO,
-/// `/dev/null`) is written in place, never replaced.
-pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+/// Where an output file goes.
+#[derive(Debug)]
+pub enum Target {
+    /// A FIFO or a device: opened and written, never renamed over.
+    InPlace(PathBuf),
+    /// A regular file (with its permissions) or a new one: replaced by renaming a
+    /// temporary file over it.
+    File {
+        /// The file.
+        path: PathBuf,
+        /// The existing file's permissions, kept by the replacement.
+        mode: Option<Permissions>,
+    },
+}
+
+/// What kind of target `path` is, refusing links, directories and read-only files
+/// with a message naming the path.
+pub fn target(path: &Path) -> std::io::Result<Target> {
     let shown = path.display();
     let refuse = |kind, why: &str| Err(Error::new(kind, format!("output {shown} {why}")));
-    let mode = match std::fs::symlink_metadata(path) {
-        Ok(m) if m.file_type().is_symlink() => {
-            return refuse(
-                ErrorKind::InvalidInput,
-                "is a symbolic link: refusing to write through it (give the path it points to)",
-            )
-        }
-        Ok(m) if m.is_dir() => return refuse(ErrorKind::IsADirectory, "is a directory"),
-        Ok(m) if m.is_file() && m.permissions().readonly() => {
-            return refuse(
-                ErrorKind::PermissionDenied,
-                "is read-only: refusing to replace it",
-            )
-        }
-        Ok(m) if m.is_file() => Some(m.permissions()),
-        Ok(_) => {
-            return std::fs::OpenOptions::new()
-                .write(true)
-                .open(path)
-                .and_then(|mut f| f.write_all(bytes))
-        }
-        Err(e) if e.kind() == ErrorKind::NotFound => None,
-        Err(e) => return Err(e),
-    };
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_symlink() => refuse(
+            ErrorKind::InvalidInput,
+            "is a symbolic link: refusing to write through it (give the path it points to)",
+        ),
+        Ok(m) if m.is_dir() => refuse(ErrorKind::IsADirectory, "is a directory"),
+        Ok(m) if m.is_file() && m.permissions().readonly() => refuse(
+            ErrorKind::PermissionDenied,
+            "is read-only: refusing to replace it",
+        ),
+        Ok(m) if m.is_file() => Ok(Target::File {
+            path: path.to_path_buf(),
+            mode: Some(m.permissions()),
+        }),
+        Ok(_) => Ok(Target::InPlace(path.to_path_buf())),
+        Err(e) if e.kind() == ErrorKind::NotFound => Ok(Target::File {
+            path: path.to_path_buf(),
+            mode: None,
+        }),
+        Err(e) => Err(Error::new(e.kind(), format!("cannot write {shown}: {e}"))),
+    }
+}
+
+/// A new temporary file `.{name}.{random}.tmp` beside `path`, created exclusively with
+/// `mode` (or rw-rw-rw- less the umask, like any new file), to be persisted over it.
+pub fn temp_beside(
+    path: &Path,
+    mode: Option<&Permissions>,
+) -> std::io::Result<tempfile::NamedTempFile> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let name = path
-        .file_name()
-        .ok_or_else(|| Error::new(ErrorKind::InvalidInput, "the path has no file name"))?
-        .to_string_lossy();
-    let (tmp, mut file) = create_beside(dir, &name, mode)?;
-    let done = file
-        .write_all(bytes)
-        .and_then(|_| file.sync_all())
-        .and_then(|_| std::fs::rename(&tmp, path));
-    if done.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    done
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    let prefix = format!(".{}.", name.as_deref().unwrap_or("gvd"));
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    #[cfg(unix)]
+    builder.permissions(
+        mode.cloned()
+            .unwrap_or_else(|| std::os::unix::fs::PermissionsExt::from_mode(0o666)),
+    );
+    #[cfg(not(unix))]
+    let _ = mode;
+    builder.tempfile_in(dir)
 }
 
-/// A new file `.{name}.{unique}.tmp` in `dir`, created exclusively with `mode` (or
-/// rw-rw-rw-), less the umask.
-fn create_beside(
-    dir: &Path,
-    name: &str,
-    mode: Option<std::fs::Permissions>,
-) -> std::io::Result<(std::path::PathBuf, std::fs::File)> {
-    use std::sync::atomic::{AtomicU64, Ordering};
-    static COUNT: AtomicU64 = AtomicU64::new(0);
-    let mut last = None;
-    for _ in 0..64 {
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map_or(0, |d| d.subsec_nanos());
-        let unique = format!(
-            "{:x}{:x}{:x}",
-            std::process::id(),
-            nanos,
-            COUNT.fetch_add(1, Ordering::Relaxed)
-        );
-        let tmp = dir.join(format!(".{name}.{unique}.tmp"));
-        let mut open = std::fs::OpenOptions::new();
-        open.write(true).create_new(true);
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::{OpenOptionsExt, PermissionsExt};
-            open.mode(mode.as_ref().map_or(0o666, |m| m.mode()));
-        }
-        #[cfg(not(unix))]
-        let _ = &mode;
-        match open.open(&tmp) {
-            Ok(f) => return Ok((tmp, f)),
-            Err(e) if e.kind() == ErrorKind::AlreadyExists => last = Some(e),
-            Err(e) => return Err(e),
+/// Writes `bytes` to `path` all or none, by the rules above.
+pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    match target(path)? {
+        Target::InPlace(path) => std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .and_then(|mut f| f.write_all(bytes)),
+        Target::File { path, mode } => {
+            let mut tmp = temp_beside(&path, mode.as_ref())?;
+            tmp.write_all(bytes)?;
+            tmp.as_file().sync_all()?;
+            tmp.persist(&path).map(drop).map_err(|e| e.error)
         }
     }
-    Err(last.unwrap_or_else(|| Error::other("cannot create a temporary file")))
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 //! [`crate::SceneBuilder`], with the checks and messages of JSON input.
 
 pub mod dxf;
-mod file;
+pub mod file;
 pub mod geojson;
 pub mod json;
 #[cfg(feature = "png")]

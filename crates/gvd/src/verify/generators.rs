@@ -252,7 +252,16 @@ impl Gens {
             }
         }
         if scene.mode() == Mode::MedialAxis {
-            let r = medial_region(scene);
+            // the algebraic sites' own samples bound the region too (not sampled again)
+            let curves = g
+                .fields
+                .iter()
+                .filter_map(|f| match f {
+                    Field::Curve(c) => Some((**c).clone()),
+                    _ => None,
+                })
+                .collect();
+            let r = medial_region(scene, curves);
             g.region = (!r.is_empty()).then_some(r);
         }
         g.find_shared_points(scene);

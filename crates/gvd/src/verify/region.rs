@@ -213,8 +213,9 @@ pub(super) fn boundary_segments(
 }
 
 /// The `medial_axis` region of a scene: the even-odd interior of its polygons, closed
-/// free-form curves and the chains of open sites that close up.
-pub(super) fn medial_region(scene: &Scene) -> Region {
+/// free-form curves, the chains of open sites that close up and the algebraic `curves`
+/// (the checker's samples of the scene's algebraic sites).
+pub(super) fn medial_region(scene: &Scene, curves: Vec<Curve>) -> Region {
     let (sagitta, spacing) = (1e-3 * scene.epsilon(), 0.25 * scene.epsilon());
     let scale = scene.domain().longest_side();
     let bounds = |s: &SiteKind| {
@@ -225,13 +226,6 @@ pub(super) fn medial_region(scene: &Scene) -> Region {
     for s in scene.sites() {
         if bounds(&s.kind) {
             segs.extend(boundary_segments(&s.kind, sagitta, spacing, scale));
-        }
-    }
-    let mut curves = Vec::new();
-    for s in scene.sites() {
-        if let SiteKind::Algebraic { equation, clip } = &s.kind {
-            let clip = clip.unwrap_or(scene.domain());
-            curves.push(Curve::new(equation.poly(), clip, spacing));
         }
     }
     for i in closed_chains(scene) {

@@ -3,6 +3,7 @@
 
 pub mod algebraic;
 mod circle;
+mod curve_tree;
 mod ellipse;
 mod euclidean;
 pub mod implicit;
@@ -10,8 +11,9 @@ mod lp;
 pub mod polygonal;
 mod polynomial;
 
-pub use algebraic::{AlgebraicField, AlgebraicState};
+pub use algebraic::AlgebraicField;
 pub use circle::CircleField;
+pub use curve_tree::CurveState;
 pub use ellipse::EllipseField;
 pub use euclidean::EuclideanPoint;
 pub use implicit::{ImplicitField, ImplicitState};
@@ -132,7 +134,7 @@ pub enum FieldState {
     Circle(()),
     Implicit(Box<ImplicitState>),
     Ellipse(Box<ImplicitState>),
-    Algebraic(Box<AlgebraicState>),
+    Algebraic(Box<CurveState>),
 }
 
 /// Choices among equivalent fields for a site kind.

@@ -230,13 +230,25 @@ impl Trimmer<'_> {
                 // a valid stretch may hide between two invalid samples: look when the
                 // samples are inside and far apart, or straddle the domain, or leave a
                 // corner's cone on its two sides (a thin cone, as of a slight corner,
-                // lies between them)
+                // lies between them), or, where whole sites are the generators, two
+                // other sites are nearer on its two sides (a short edge between two
+                // vertices, where the nearest third site changes; in the other modes
+                // neighbouring pieces of one outline alternate so along most branches,
+                // and are not searched between)
                 match (pa, pb) {
                     (Some(x), Some(y))
                         if matches!((a.status, b.status),
                             (Status::Cone(u), Status::Cone(v)) if u != v) =>
                     {
                         x.dist(y) > 1e-12 * self.domain.longest_side() && wider(48)
+                    }
+                    (Some(x), Some(y))
+                        if matches!((a.status, b.status),
+                            (Status::Nearer(u), Status::Nearer(v))
+                                if !self.features.pieces.featured
+                                    && self.features.pieces.site(u) != self.features.pieces.site(v)) =>
+                    {
+                        x.dist(y) > 1e-12 * self.domain.longest_side() && wider(12)
                     }
                     (Some(x), Some(y)) => {
                         let near = |p: Point| self.domain.outside_distance(p) < self.step;

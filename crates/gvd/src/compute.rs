@@ -272,13 +272,13 @@ fn subdivision_supports(kind: &SiteKind) -> bool {
         | SiteKind::Ellipse { .. }
         | SiteKind::Field { .. }
         | SiteKind::ImplicitField { .. }
-        | SiteKind::Algebraic { .. } => true,
+        | SiteKind::Algebraic { .. }
+        | SiteKind::Bezier { .. }
+        | SiteKind::Bspline { .. } => true,
         SiteKind::Segment { .. }
         | SiteKind::Arc { .. }
         | SiteKind::Polyline { .. }
-        | SiteKind::Polygon { .. }
-        | SiteKind::Bezier { .. }
-        | SiteKind::Bspline { .. } => false,
+        | SiteKind::Polygon { .. } => false,
     }
 }
 
@@ -295,19 +295,6 @@ fn check_one_engine_takes_all(scene: &Scene) -> Result<(), Error> {
         kind: sites[i].kind.name().to_string(),
         message,
     };
-    let by_none = |k: &SiteKind| !subdivision_supports(k) && !incremental::supports_site(k);
-    if let Some(i) = sites.iter().position(|s| by_none(&s.kind)) {
-        let message = if matches!(
-            sites[i].kind,
-            SiteKind::Bezier { .. } | SiteKind::Bspline { .. }
-        ) {
-            "the free-form engine computes scenes of Bézier and B-spline curves alone; no \
-             engine computes them with other kinds yet"
-        } else {
-            "no engine computes this kind yet"
-        };
-        return Err(unsupported(i, message.into()));
-    }
     let other = sites
         .iter()
         .position(|s| !incremental::supports_site(&s.kind))

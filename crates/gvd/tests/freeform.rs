@@ -123,8 +123,10 @@ fn check_by_brute_force(sc: &Scene, d: &VoronoiComplex) {
     let mut checked = 0;
     for e in &d.edges {
         let (i, j) = (e.sites[0].site(), e.sites[1].site());
-        for q in e.points.iter().step_by(2) {
-            let dist: Vec<f64> = curves.iter().map(|c| poly_dist(*q, c)).collect();
+        // the polyline's points and the middles of its pieces
+        let middles = e.points.windows(2).map(|w| w[0].lerp(w[1], 0.5));
+        for q in e.points.iter().copied().chain(middles) {
+            let dist: Vec<f64> = curves.iter().map(|c| poly_dist(q, c)).collect();
             assert!(
                 (dist[i] - dist[j]).abs() < eps,
                 "{q:?}: {} vs {}",
@@ -140,7 +142,7 @@ fn check_by_brute_force(sc: &Scene, d: &VoronoiComplex) {
             );
             for (k, c) in curves.iter().enumerate() {
                 if c[0].dist(*c.last().unwrap()) < 1e-9 {
-                    assert!(!inside(*q, c) || dist[k] < eps, "{q:?} inside site {k}");
+                    assert!(!inside(q, c) || dist[k] < eps, "{q:?} inside site {k}");
                 }
             }
             checked += 1;
@@ -698,5 +700,108 @@ fn a_corner_at_one_joint_of_a_chain() {
         let at_corner = d.vertices.iter().any(|v| v.at.dist(corner) < 1e-9);
         assert_eq!(at_corner, convex, "s {s}");
         corners_are_vertices_or_generators(&sc, &d, &[corner]);
+    }
+}
+
+/// The generator pairs of a diagram's edges, each sorted, as a sorted list.
+fn edge_pairs(d: &VoronoiComplex) -> Vec<[usize; 2]> {
+    let mut pairs: Vec<[usize; 2]> = d
+        .edges
+        .iter()
+        .map(|e| {
+            let (a, b) = (e.sites[0].site(), e.sites[1].site());
+            [a.min(b), a.max(b)]
+        })
+        .collect();
+    pairs.sort();
+    pairs.dedup();
+    pairs
+}
+
+/// The subdivision engine's distance field of free-form curves (a tree of sub-spans)
+/// against the free-form engine (bisectors in parameter space): two algorithm families,
+/// the same vertices within a few epsilon with the same generators, and the same
+/// adjacency; the subdivision's edges pass the brute-force check too.
+#[test]
+fn the_subdivision_engine_agrees_with_the_freeform_engine() {
+    for name in [
+        "freeform-convex3-voronoi.json",
+        "freeform-nonconvex2-voronoi.json",
+        "freeform-closed6-voronoi.json",
+    ] {
+        let sc = scene(name);
+        let sub = run(&sc, Engine::Subdivision);
+        let ff = run(&sc, Engine::Freeform);
+        assert_eq!(sub.stats["engine"], "subdivision");
+        check_by_brute_force(&sc, &sub);
+        same_vertices(&sub, &ff, 4.0 * sc.epsilon());
+        assert_eq!(edge_pairs(&sub), edge_pairs(&ff), "{name}");
+    }
+}
+
+/// Free-form curves mix with points, circles and algebraic curves in one scene (only
+/// the subdivision engine takes them all): `auto` picks it, and `gvd verify`, with its
+/// own distances to the curves, passes the diagram.
+#[test]
+fn curves_mix_with_points_circles_and_algebraic_curves() {
+    let sc = scene("mixed-kinds-voronoi.json");
+    let d = run(&sc, Engine::Auto);
+    assert_eq!(d.stats["engine"], "subdivision");
+    assert_eq!(d.stats["uncertified_boxes"], 0);
+    assert_eq!(d.cells.len(), sc.sites().len());
+    let report = gvd::verify(&sc, &d, &gvd::VerifyOptions::default()).unwrap();
+    assert!(report.passed, "{report:?}");
+    // every site meets another: 10 edges about 5 vertices
+    assert_eq!((d.vertices.len(), d.edges.len()), (5, 10));
+}
+
+#[test]
+fn the_subdivision_engine_refuses_curves_outside_voronoi_mode() {
+    for name in [
+        "freeform-bezier4-medial_axis.json",
+        "freeform-piecewise-c1-complex.json",
+    ] {
+        let err = compute(
+            &scene(name),
+            &Options {
+                engine: Engine::Subdivision,
+                ..Default::default()
+            },
+        )
+        .unwrap_err();
+        assert!(
+            matches!(&err, Error::Unsupported { site: 0, message, .. } if message.contains("--engine freeform")),
+            "{name}: {err}"
+        );
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// The subdivision engine's field of a rational cubic B-spline: over random boxes
+    /// the bounds enclose the distance of a dense Cox–de Boor sampling, the point value
+    /// agrees with it, and the gradient bound holds the gradient at the point.
+    #[test]
+    fn freeform_box_bounds_enclose_the_sampled_distance(
+        x in -2.0f64..1.9, y in -2.0f64..1.9, w in 0.0005f64..0.5, u in 0.0f64..1.0, v in 0.0f64..1.0
+    ) {
+        use gvd::internals::{DistanceField, SiteField};
+        let sc = scene("freeform-nonconvex2-voronoi.json");
+        let kind = &sc.sites()[0].kind;
+        let curve = dense(kind, 20000);
+        let f = SiteField::from_site(0, kind, &sc.domain()).unwrap();
+        let b = gvd::Aabb::from_array([x, y, x + w, y + w]);
+        let s = f.state(&b);
+        let q = Point::new(x + u * w, y + v * w);
+        let d = poly_dist(q, &curve);
+        let r = f.bound(&s, &b);
+        // the sampling's chords lie within 1e-7 of the curve
+        proptest::prop_assert!(r.lo <= d + 1e-12 && d <= r.hi + 1e-7, "{r} vs {d} at {q:?}");
+        proptest::prop_assert!((f.value(q) - d).abs() < 1e-7, "value {} vs {d}", f.value(q));
+        proptest::prop_assert!((f.value_in(&s, q) - d).abs() < 1e-7);
+        let g = f.gradient(q);
+        let gb = f.gradient_bound(&s, &b).unwrap();
+        proptest::prop_assert!(gb[0].contains(g.x) && gb[1].contains(g.y), "{gb:?} vs {g:?}");
     }
 }

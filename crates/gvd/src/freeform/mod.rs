@@ -18,11 +18,11 @@
 //! `t_in − t_out` is on the left of the arriving tangent iff `t_in × t_out < 0`.
 
 mod assemble;
-mod bisector;
+pub(crate) mod bisector;
 mod candidates;
 mod feet;
-mod nearest;
-mod pieces;
+pub(crate) mod nearest;
+pub(crate) mod pieces;
 mod trace;
 mod trim;
 

@@ -5,6 +5,7 @@
 
 use super::bisector::SpanForms;
 use super::pieces::{Feature, Pieces};
+use crate::geom::bezier::RationalBezier;
 use crate::geom::Point;
 use crate::num::roots::{isolate, refine};
 
@@ -36,25 +37,7 @@ impl<'a> Features<'a> {
 
     /// The distance from `q` to span `k` and the parameter of its nearest point.
     pub fn span_distance(&self, k: usize, q: Point) -> (f64, f64) {
-        let c = &self.pieces.spans[k].curve;
-        let g = self.forms[k].foot(q);
-        let mut best = (c.eval(0.0).dist(q), 0.0);
-        let end = c.eval(1.0).dist(q);
-        if end < best.0 {
-            best = (end, 1.0);
-        }
-        for root in isolate(&g, 1e-13) {
-            let t = if root.certified {
-                refine(&g, root.lo, root.hi)
-            } else {
-                0.5 * (root.lo + root.hi)
-            };
-            let d = c.eval(t).dist(q);
-            if d < best.0 {
-                best = (d, t);
-            }
-        }
-        best
+        span_distance(&self.pieces.spans[k].curve, &self.forms[k], q)
     }
 
     /// The nearest feature to `q` among those closer than `bound` (spans and active
@@ -86,4 +69,27 @@ impl<'a> Features<'a> {
     pub fn nearest(&self, q: Point) -> Option<(Feature, f64)> {
         self.nearest_below(q, f64::INFINITY)
     }
+}
+
+/// The distance from `q` to the span `c` (with its `forms`) and the parameter of its
+/// nearest point: the ends and the certified roots of the foot-point polynomial.
+pub fn span_distance(c: &RationalBezier, forms: &SpanForms, q: Point) -> (f64, f64) {
+    let g = forms.foot(q);
+    let mut best = (c.eval(0.0).dist(q), 0.0);
+    let end = c.eval(1.0).dist(q);
+    if end < best.0 {
+        best = (end, 1.0);
+    }
+    for root in isolate(&g, 1e-13) {
+        let t = if root.certified {
+            refine(&g, root.lo, root.hi)
+        } else {
+            0.5 * (root.lo + root.hi)
+        };
+        let d = c.eval(t).dist(q);
+        if d < best.0 {
+            best = (d, t);
+        }
+    }
+    best
 }

@@ -160,7 +160,7 @@ impl Pieces {
 
 /// The spans of one site (homogeneous Bézier control polygons) and whether it is closed,
 /// or `None` when the site is not a free-form curve.
-fn site_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)> {
+pub(crate) fn site_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)> {
     match kind {
         SiteKind::Bezier {
             control_points,

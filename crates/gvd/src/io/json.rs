@@ -3,7 +3,7 @@
 use crate::complex::VoronoiComplex;
 use crate::error::Error;
 use crate::geom::Point;
-use crate::scene::{Metric, Mode, Scene, SiteKind};
+use crate::scene::{Metric, Scene, SiteKind};
 use serde_json::{json, Value};
 
 /// Reads a diagram. Refuses invalid JSON, missing or mistyped required fields and
@@ -184,11 +184,7 @@ pub fn write_scene(scene: &Scene) -> String {
             v
         })
         .collect();
-    let mode = match scene.mode() {
-        Mode::Voronoi => "voronoi",
-        Mode::Complex => "complex",
-        Mode::MedialAxis => "medial_axis",
-    };
+    let mode = scene.mode().name();
     let v = json!({
         "domain": scene.domain().to_array(),
         "epsilon": scene.epsilon(),
@@ -206,7 +202,7 @@ mod tests {
 
     #[test]
     fn a_written_scene_reads_back_the_same() {
-        use crate::scene::Site;
+        use crate::scene::{Mode, Site};
         let scene = Scene::new(
             crate::Aabb::from_array([-3.0, -3.0, 3.0, 3.0]),
             1e-3,

@@ -27,6 +27,17 @@ pub enum Mode {
     MedialAxis,
 }
 
+impl Mode {
+    /// The `mode` string of the format.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Voronoi => "voronoi",
+            Mode::Complex => "complex",
+            Mode::MedialAxis => "medial_axis",
+        }
+    }
+}
+
 /// The distance field of a point site (`docs/SCENE_FORMAT.md`, point metrics;
 /// (EMM13) §1.1).
 #[derive(Clone, Debug, PartialEq)]

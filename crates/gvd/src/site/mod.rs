@@ -6,6 +6,7 @@ mod circle;
 mod curve_tree;
 mod ellipse;
 mod euclidean;
+mod freeform;
 pub mod implicit;
 mod lp;
 pub mod polygonal;
@@ -16,6 +17,7 @@ pub use circle::CircleField;
 pub use curve_tree::CurveState;
 pub use ellipse::EllipseField;
 pub use euclidean::EuclideanPoint;
+pub use freeform::FreeformField;
 pub use implicit::{ImplicitField, ImplicitState};
 pub use lp::LpPoint;
 pub use polynomial::PolynomialField;
@@ -123,6 +125,8 @@ pub enum SiteField {
     Ellipse(Box<EllipseField>),
     /// An algebraic curve: its own [`DistanceField`], delegated to.
     Algebraic(Box<AlgebraicField>),
+    /// A Bézier or B-spline curve by its tree of sub-spans.
+    Freeform(Box<FreeformField>),
 }
 
 /// The per-box state of a [`SiteField`]: its family's own state (large ones boxed).
@@ -135,6 +139,7 @@ pub enum FieldState {
     Implicit(Box<ImplicitState>),
     Ellipse(Box<ImplicitState>),
     Algebraic(Box<CurveState>),
+    Freeform(Box<CurveState>),
 }
 
 /// Choices among equivalent fields for a site kind.
@@ -201,6 +206,12 @@ impl SiteField {
             SiteKind::Field { equation } => Ok(SiteField::Polynomial(PolynomialField::new(
                 equation.poly().clone(),
             ))),
+            SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => {
+                let (spans, _) = crate::freeform::pieces::site_spans(kind).unwrap_or_default();
+                Ok(SiteField::Freeform(Box::new(FreeformField::new(
+                    index, spans, epsilon,
+                )?)))
+            }
             other => Err(Error::Unsupported {
                 site: index,
                 kind: other.name().to_string(),
@@ -377,4 +388,4 @@ macro_rules! delegate_to_families {
     };
 }
 
-delegate_to_families!(Euclidean, Polynomial, Lp, Circle, Implicit, Ellipse, Algebraic);
+delegate_to_families!(Euclidean, Polynomial, Lp, Circle, Implicit, Ellipse, Algebraic, Freeform);

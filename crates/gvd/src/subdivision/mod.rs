@@ -73,6 +73,7 @@ pub(crate) fn run_scene(
     params: &Params,
     watch: &Watch,
 ) -> Result<Output, Error> {
+    refuse_freeform_features(scene)?;
     if scene.mode() == crate::scene::Mode::MedialAxis {
         return medial::run(scene, field_options, params, watch);
     }
@@ -134,6 +135,28 @@ fn add_curve_stats(fields: &[SiteField], complex: &mut VoronoiComplex) {
         .collect();
     if !curves.is_empty() {
         complex.stats.insert("algebraic".into(), json!(curves));
+    }
+}
+
+/// Refuses a free-form curve outside `voronoi` mode: its field here is the distance to
+/// the whole curve, while `complex` and `medial_axis` modes name its pieces and corners
+/// as generators, which the free-form engine computes.
+fn refuse_freeform_features(scene: &Scene) -> Result<(), Error> {
+    use crate::scene::{Mode, SiteKind};
+    if scene.mode() == Mode::Voronoi {
+        return Ok(());
+    }
+    let freeform = |k: &SiteKind| matches!(k, SiteKind::Bezier { .. } | SiteKind::Bspline { .. });
+    match scene.sites().iter().position(|s| freeform(&s.kind)) {
+        Some(i) => Err(Error::Unsupported {
+            site: i,
+            kind: scene.sites()[i].kind.name().to_string(),
+            message: format!(
+                "the subdivision engine computes free-form curves in 'voronoi' mode only; mode '{}' is computed by the free-form engine (--engine freeform, or auto for scenes of curves alone)",
+                scene.mode().name()
+            ),
+        }),
+        None => Ok(()),
     }
 }
 

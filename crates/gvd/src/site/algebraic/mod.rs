@@ -296,7 +296,7 @@ impl DistanceField for AlgebraicField {
         }
     }
 
-    /// [`curve_tree::pair`]: the mean value form about the box's centre.
+    /// The mean value form about the box's centre (`curve_tree::pair`).
     fn pair(&self, s: &CurveState, other: &Self, so: &CurveState, b: &Aabb) -> PairBound {
         curve_tree::pair(self, s, other, so, b)
     }

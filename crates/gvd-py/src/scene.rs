@@ -197,7 +197,7 @@ impl PyScene {
         read(py, text.as_bytes(), Format::Json, None, None, None, None)
     }
 
-    /// Reads a scene file: the format from `format` (`json`, `geojson`, `wkt`, `dxf`) or
+    /// Reads a scene file: the format from `format` (`json`, `geojson`, `wkt`, `dxf`, `svg`) or
     /// the extension. `domain`, `epsilon` and `mode` override the file's; formats
     /// without a domain get the sites' bounding box grown by a tenth of its longest
     /// side. `project="local"` takes GeoJSON coordinates as longitude and latitude in

@@ -66,7 +66,7 @@ def read(
     project: Optional[str] = None,
 ) -> Scene:
     """Reads a scene file; the format from ``format`` or the extension (``.json``,
-    ``.geojson``, ``.wkt``, ``.dxf``). ``domain``, ``epsilon`` and ``mode`` override the
+    ``.geojson``, ``.wkt``, ``.dxf``, ``.svg``). ``domain``, ``epsilon`` and ``mode`` override the
     file's. ``project="local"`` takes GeoJSON coordinates as longitude and latitude in
     degrees, projected to metres about the data's centre; the diagram's GeoJSON outputs
     come back in longitude and latitude."""

@@ -282,3 +282,26 @@ def test_longitude_and_latitude_projected_and_back(tmp_path):
                 assert 4.9 < x < 5.7 and 51.9 < y < 52.6
     with pytest.raises(gvd.OptionError, match="project"):
         gvd.read(path, project="utm")
+
+
+def test_sites_added_to_a_projected_scene_keep_its_projection():
+    shapely = pytest.importorskip("shapely")
+    text = json.dumps({"type": "MultiPoint", "coordinates": [(5.0, 52.0), (5.6, 52.3), (5.2, 52.5)]})
+    scene = gvd.Scene.from_geojson(text, project="local")
+    # the scene's coordinates are metres about the data's centre, (5.3, 52.25)
+    site = scene.add_point([0.0, 0.0])
+    out = json.loads(gvd.compute(scene).to_geojson())
+
+    def coordinates(geometry):
+        if geometry["type"] == "Point":
+            return [geometry["coordinates"]]
+        if geometry["type"] == "LineString":
+            return geometry["coordinates"]
+        return [p for ring in geometry["coordinates"] for p in ring]
+
+    for f in out["features"]:
+        for x, y in coordinates(f["geometry"]):
+            assert 4.8 < x < 5.8 and 51.9 < y < 52.6, (f["properties"], x, y)
+    (cell,) = [f for f in out["features"]
+               if f["properties"]["type"] == "cell" and f["properties"]["site"] == site]
+    assert shapely.geometry.shape(cell["geometry"]).contains(shapely.Point(5.3, 52.25))

@@ -57,12 +57,13 @@ enum Command {
 #[derive(Args)]
 struct ComputeArgs {
     /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT, DXF or SVG by its extension (`-`
-    /// reads JSON from standard input).
+    /// reads standard input: JSON, or the format given by `--format`).
     scene: PathBuf,
     /// The scene's format, whatever its extension.
     #[arg(long, value_enum)]
     format: Option<FormatArg>,
-    /// The mode, instead of the scene's (GeoJSON, WKT and DXF have none: voronoi).
+    /// The mode, instead of the scene's (a GeoJSON file's top-level `mode`; WKT, DXF and
+    /// SVG have none: voronoi).
     #[arg(long, value_enum)]
     mode: Option<ModeArg>,
     /// GeoJSON in longitude and latitude (degrees): `local` projects them to metres
@@ -147,7 +148,7 @@ struct ComputeArgs {
 #[derive(Args)]
 struct OffsetArgs {
     /// The scene: JSON (SCENE_FORMAT.md), GeoJSON, WKT, DXF or SVG by its extension (`-`
-    /// reads JSON from standard input).
+    /// reads standard input: JSON, or the format given by `--format`).
     scene: PathBuf,
     /// The scene's format, whatever its extension.
     #[arg(long, value_enum)]

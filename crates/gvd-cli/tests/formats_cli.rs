@@ -291,3 +291,35 @@ fn longitude_and_latitude_projected_and_back() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("GeoJSON only"));
 }
+
+/// `-` reads any format from standard input when `--format` names it, and a GeoJSON
+/// diagram goes to standard output with `--geojson -`.
+#[test]
+fn standard_input_in_the_format_given() {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_gvd"))
+        .args(["compute", "-", "--format", "wkt", "--geojson", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"MULTIPOINT ((0 0), (1 0), (0 1))\n")
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    ok(&out);
+    let d: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let kinds: Vec<&str> = d["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["properties"]["type"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds.iter().filter(|&&k| k == "vertex").count(), 1);
+    assert_eq!(kinds.iter().filter(|&&k| k == "cell").count(), 3);
+}

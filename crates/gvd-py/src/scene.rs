@@ -3,7 +3,7 @@
 
 use crate::errors::{scene_error, site_error, to_py};
 use crate::read::{format_of, read};
-use gvd::io::Format;
+use gvd::io::{Format, LocalProjection};
 use gvd::{Aabb, Metric, Mode, Point, Scene, SceneBuilder, Site};
 use numpy::{AllowTypeChange, PyArrayLike2};
 use pyo3::prelude::*;
@@ -42,12 +42,17 @@ pub fn extract_box(obj: &Bound<'_, PyAny>, on_error: impl Fn(String) -> PyErr) -
 ///
 /// Sites are checked as they are added (the same checks and messages as JSON input);
 /// the checks between sites (duplicates, overlaps) run when the scene is computed or
-/// built. Refusals raise `gvd.SceneError` with the site index and field.
+/// built. Refusals raise `gvd.SceneError` with the site index and field. A scene read
+/// with `project="local"` is in metres about the data's centre; sites added to it are
+/// too, and its diagrams' GeoJSON comes back in longitude and latitude.
 #[pyclass(name = "Scene", module = "gvd")]
 pub struct PyScene {
     domain: Aabb,
     epsilon: Option<f64>,
     mode: Mode,
+    /// The projection a reader took longitudes and latitudes through; the scene keeps
+    /// it when sites are added (their coordinates are the projected metres).
+    projection: Option<LocalProjection>,
     /// The sites added so far (`None` after a reader built the scene, until a site is
     /// added to it).
     builder: Option<SceneBuilder>,
@@ -62,6 +67,7 @@ impl PyScene {
             domain: scene.domain(),
             epsilon: Some(scene.epsilon()),
             mode: scene.mode(),
+            projection: scene.projection().copied(),
             builder: None,
             built: Some(Arc::new(scene)),
         }
@@ -73,7 +79,11 @@ impl PyScene {
             return Ok(s.clone());
         }
         let builder = self.builder()?.clone();
-        let scene = Arc::new(builder.build().map_err(to_py)?);
+        let scene = builder
+            .build()
+            .map_err(to_py)?
+            .with_projection(self.projection);
+        let scene = Arc::new(scene);
         self.built = Some(scene.clone());
         Ok(scene)
     }
@@ -172,6 +182,7 @@ impl PyScene {
             domain,
             epsilon,
             mode: parse_mode(mode)?,
+            projection: None,
             builder: None,
             built: None,
         };
@@ -186,7 +197,7 @@ impl PyScene {
         read(py, text.as_bytes(), Format::Json, None, None, None, None)
     }
 
-    /// Reads a scene file: the format from `format` (`json`, `geojson`, `wkt`, `dxf`) or
+    /// Reads a scene file: the format from `format` (`json`, `geojson`, `wkt`, `dxf`, `svg`) or
     /// the extension. `domain`, `epsilon` and `mode` override the file's; formats
     /// without a domain get the sites' bounding box grown by a tenth of its longest
     /// side. `project="local"` takes GeoJSON coordinates as longitude and latitude in

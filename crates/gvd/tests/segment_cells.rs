@@ -1,12 +1,13 @@
 //! Cells of the segment engine (points, segments, arcs, polylines, polygons in
-//! `voronoi` mode): they tile the domain, and a sampled point lies in the cell of the
+//! `voronoi` mode) and of the soft-predicate engine (segments, polylines, polygons):
+//! they tile the domain, and a sampled point lies in the cell of the
 //! site nearest to it by an independent brute force (`common::dist`).
 
 mod common;
 
 use gvd::complex::{Cell, Generator};
 use gvd::geom::ring::{even_odd_contains, signed_area};
-use gvd::{compute, Aabb, Mode, Options, Point, Scene, Site};
+use gvd::{compute, Aabb, Engine, Mode, Options, Point, Scene, Site};
 
 fn area(c: &Cell) -> f64 {
     c.rings.iter().map(|r| signed_area(r)).sum()
@@ -41,12 +42,21 @@ fn polygon_with_a_hole() -> Scene {
     .unwrap()
 }
 
-/// Checks the cells of `scene`'s diagram: one per site with a positive area, areas
+/// Checks the cells of `scene`'s diagram by the default engine: one per site with a positive area, areas
 /// summing to the domain's, and each of `n × n` sampled points in exactly one cell, the
 /// one of its nearest site (samples within `tie` of a tie skipped). Returns the number of
 /// samples checked.
 fn check_cells(scene: &Scene, n: usize) -> usize {
-    let d = compute(scene, &Options::default()).unwrap();
+    check_cells_of(scene, Engine::Auto, n)
+}
+
+/// [`check_cells`] of the diagram by `engine`.
+fn check_cells_of(scene: &Scene, engine: Engine, n: usize) -> usize {
+    let options = Options {
+        engine,
+        ..Options::default()
+    };
+    let d = compute(scene, &options).unwrap();
     let domain = scene.domain();
     let whole = domain.width() * domain.height();
     let total: f64 = d.cells.iter().map(area).sum();
@@ -147,4 +157,28 @@ fn a_cell_inside_a_polygon_is_its_hole() {
     );
     assert!(area(point) > 0.1 && area(point) < 1.56);
     assert!(even_odd_contains(hole, Point::new(-0.3, -0.5)));
+}
+
+/// The soft-predicate engine (`Engine::Subdivision` on segments, polylines and
+/// polygons) gives every site its cell too, a polygon's with the hole where another
+/// polygon lies inside it.
+#[test]
+fn the_soft_engine_tiles_the_domain() {
+    assert!(check_cells_of(&scene_file("segments-0200.json"), Engine::Subdivision, 60) > 3000);
+    let nested = Scene::new(
+        Aabb::from_array([-3.0, -3.0, 3.0, 3.0]),
+        1e-4,
+        Mode::Voronoi,
+        vec![
+            Site::polygon([
+                vec![[-2.0, -2.0], [1.0, -2.0], [1.0, 1.0], [-2.0, 1.0]],
+                vec![[-1.0, -1.0], [-1.0, 0.2], [0.3, 0.2], [0.3, -1.0]],
+            ]),
+            Site::polygon([vec![[-0.5, -0.6], [-0.1, -0.6], [-0.3, -0.3]]]),
+            Site::segment([2.0, -2.5], [2.5, 2.0]),
+            Site::polyline([[1.5, 2.8], [2.0, 2.2], [2.8, 2.6]]),
+        ],
+    )
+    .unwrap();
+    assert!(check_cells_of(&nested, Engine::Subdivision, 60) > 3000);
 }

@@ -192,6 +192,7 @@ fn run_unit(
     let mut complex = output::clip(complex, &domain);
     if scene.mode() == Mode::Voronoi {
         complex = output::to_sites(complex);
+        complex.cells = crate::complex::cells::site_cells(&complex, scene);
     }
     add_stats(
         &mut complex,

@@ -9,11 +9,17 @@ use crate::geom::{Aabb, Point};
 use crate::par::map_range;
 use std::collections::BTreeMap;
 
+/// How often a grid step is split where a third generator is nearer at the crossing
+/// (2^8 pieces: a step may cross that many cells narrower than it, as on outlines of
+/// chords far shorter than the grid; the Python checker splits as deep).
+const MAX_SPLIT_DEPTH: u32 = 8;
+
 impl Checker<'_> {
     /// The crossings of the bisectors between the nearest generators `a` at `qa` and
     /// `b` at `qb`: bisection of `d_a − d_b` (14 steps, then linear interpolation);
     /// where a third generator is
-    /// nearer at the crossing, both halves are searched again (depth ≤ 4). An edge or
+    /// nearer at the crossing, both halves are searched again (depth ≤
+    /// [`MAX_SPLIT_DEPTH`]; deeper, the step holds no crossing of `a` and `b`). An edge or
     /// piece whose foot at the crossing is its end corner, beyond it by more than the
     /// last bracket, becomes that corner (the bisection crossed the corner's zone
     /// boundary). Crossings in ties of coincident feet (or feet at a shared point and
@@ -75,11 +81,16 @@ impl Checker<'_> {
         };
         let (dmin, gmin) = if da <= db { (da, ga) } else { (db, gb) };
         let k = hit.gen;
-        if k != a && k != b && depth < 4 {
+        if k != a && k != b {
             let (_, gk) = self.eval(k, x);
             if (dmin - hit.value) / (gmin - gk).norm().max(1e-12) > 1e-9 * self.scale {
-                self.crossings(qa, x, a, k, depth + 1, out);
-                self.crossings(x, qb, k, b, depth + 1, out);
+                // still nearer after MAX_SPLIT_DEPTH splits (a cascade of cells narrower
+                // than the grid: a curve drawn with chords far shorter than its step):
+                // no crossing of a and b, and no edge of theirs could cover it
+                if depth < MAX_SPLIT_DEPTH {
+                    self.crossings(qa, x, a, k, depth + 1, out);
+                    self.crossings(x, qb, k, b, depth + 1, out);
+                }
                 return;
             }
         }

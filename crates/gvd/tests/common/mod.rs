@@ -8,9 +8,12 @@ use gvd::geom::Point;
 use gvd::scene::{Mode, SiteKind};
 use gvd::Scene;
 
-/// The distance from `q` to the closed segment `[a, b]`.
+/// The distance from `q` to the closed segment `[a, b]` (to `a` when `a = b`).
 pub fn seg_dist(q: Point, a: Point, b: Point) -> f64 {
     let d = b - a;
+    if d.dot(d) == 0.0 {
+        return q.dist(a);
+    }
     let t = ((q - a).dot(d) / d.dot(d)).clamp(0.0, 1.0);
     q.dist(a + d * t)
 }

@@ -494,29 +494,82 @@ impl Generators {
             if lo >= hi {
                 continue;
             }
-            let pts = &piece[lo..=hi];
-            // A point off both generators tells the side each one grows towards.
-            let mid = if pts.len() == 2 {
-                pts[0].lerp(pts[1], 0.5)
-            } else {
-                pts[pts.len() / 2]
-            };
-            let [Some(a), Some(b)] = st.gens.map(|g| self.offset_gen(g, mid)) else {
-                return Vec::new();
-            };
-            // Two features with a common end whose own bisector has constant clearance
-            // (two arcs of one circle, two collinear segments) meet along the normal
-            // at that end: the bisector of the end and either feature.
-            let joint = || {
-                let end = self.common_end(st.gens[0], st.gens[1])?;
-                bisector_form::pieces(OffsetGen::point(self.points[end as usize]), a, pts, tol)
-            };
-            match bisector_form::pieces(a, b, pts, tol).or_else(joint) {
-                Some(p) => out.extend(p),
-                None => return Vec::new(),
+            for pts in self.sides(&piece[lo..=hi], st.gens) {
+                // A point off both generators tells the side each one grows towards.
+                let mid = if pts.len() == 2 {
+                    pts[0].lerp(pts[1], 0.5)
+                } else {
+                    pts[pts.len() / 2]
+                };
+                let [Some(a), Some(b)] = st.gens.map(|g| self.offset_gen(g, mid)) else {
+                    return Vec::new();
+                };
+                // Two features with a common end whose own bisector has constant
+                // clearance (two arcs of one circle, two collinear segments) meet along
+                // the normal at that end: the bisector of the end and either feature.
+                let joint = || {
+                    let end = self.common_end(st.gens[0], st.gens[1])?;
+                    let end = OffsetGen::point(self.points[end as usize]);
+                    bisector_form::pieces(end, a, &pts, tol)
+                };
+                match bisector_form::pieces(a, b, &pts, tol).or_else(joint) {
+                    Some(p) => out.extend(p),
+                    None => return Vec::new(),
+                }
             }
         }
         out
+    }
+
+    /// `pts` cut where they cross the supporting line of a segment among `gens`, the
+    /// crossing point ending one run and starting the next. A bisector crosses that
+    /// line only through the segment's end (where the clearance is 0), as along the
+    /// common normal at a nearly straight joint; on each side the line is grown
+    /// towards that side, so one offset form cannot hold both.
+    fn sides(&self, pts: &[Point], gens: [Gen; 2]) -> Vec<Vec<Point>> {
+        let lines: Vec<[Point; 2]> = gens
+            .iter()
+            .filter_map(|&g| match g {
+                Gen::Segment(s) => Some(self.segments[s as usize].map(|p| self.points[p as usize])),
+                _ => None,
+            })
+            .collect();
+        let side = |x: Point| {
+            lines
+                .iter()
+                .map(|&[a, b]| (b - a).cross(x - a))
+                .collect::<Vec<_>>()
+        };
+        let mut runs = Vec::new();
+        let mut run = vec![pts[0]];
+        let mut prev = side(pts[0]);
+        // the last side not on the line, per line (a point may lie on it exactly)
+        let mut was = prev.clone();
+        for &x in &pts[1..] {
+            let now = side(x);
+            // the first line the step leaves for its other side, at its fraction of
+            // the step (0: from a point on the line)
+            let cut = (0..lines.len())
+                .filter(|&i| was[i] * now[i] < 0.0)
+                .map(|i| prev[i] / (prev[i] - now[i]))
+                .min_by(f64::total_cmp);
+            if let Some(f) = cut {
+                let at = run[run.len() - 1].lerp(x, f);
+                if f > 0.0 {
+                    run.push(at);
+                }
+                runs.push(std::mem::replace(&mut run, vec![at]));
+            }
+            run.push(x);
+            for i in 0..lines.len() {
+                if now[i] != 0.0 {
+                    was[i] = now[i];
+                }
+            }
+            prev = now;
+        }
+        runs.push(run);
+        runs
     }
 
     /// The point generator that ends both `a` and `b` (segments or arcs), if any.

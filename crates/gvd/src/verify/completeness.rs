@@ -77,7 +77,7 @@ impl Checker<'_> {
         let k = hit.gen;
         if k != a && k != b && depth < 4 {
             let (_, gk) = self.eval(k, x);
-            if (dmin - hit.value) / (gmin - gk).norm().max(1e-12) > 1e-9 * self.scale {
+            if super::excess_length(dmin - hit.value, gmin, gk) > 1e-9 * self.scale {
                 self.crossings(qa, x, a, k, depth + 1, out);
                 self.crossings(x, qb, k, b, depth + 1, out);
                 return;

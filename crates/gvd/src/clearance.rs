@@ -146,9 +146,9 @@ fn foot(scene: &Scene, generator: &Generator, q: Point) -> Option<Point> {
     let site = scene.sites().get(generator.site())?;
     if let Generator::Feature { feature, index, .. } = *generator {
         match feature {
-            FeatureKind::Corner => return corners(site)?.get(index).copied(),
+            FeatureKind::Corner => return corner(site, index),
             FeatureKind::Edge => {
-                let (a, b) = chain_edges(site)?.nth(index)?;
+                let (a, b) = chain_edge(site, index)?;
                 return Some(segment_foot(q, a, b));
             }
             FeatureKind::Piece => {}
@@ -215,23 +215,53 @@ fn chain_edges(site: &Site) -> Option<Box<dyn Iterator<Item = (Point, Point)> + 
     ))
 }
 
-/// The corners of a segment or an arc (its ends), a polyline (its points) or a polygon
-/// (its rings' points in order); `None` for other kinds.
-fn corners(site: &Site) -> Option<Vec<Point>> {
+/// Corner `index` of a segment or an arc (its ends), a polyline (its points) or a
+/// polygon (its rings' points in order), found ring by ring (a polygon of 10^5
+/// corners asks for each of them); `None` for other kinds or an index out of range.
+fn corner(site: &Site, index: usize) -> Option<Point> {
     match &site.kind {
-        SiteKind::Segment { from, to } => Some(vec![*from, *to]),
+        SiteKind::Segment { from, to } => [*from, *to].get(index).copied(),
         SiteKind::Arc {
             center,
             radius,
             start_angle,
             end_angle,
-        } => Some(
-            Arc::from_angles(*center, *radius, *start_angle, *end_angle)
-                .ends()
-                .to_vec(),
-        ),
-        SiteKind::Polyline { points } => Some(points.clone()),
-        SiteKind::Polygon { rings } => Some(rings.iter().flatten().copied().collect()),
+        } => Arc::from_angles(*center, *radius, *start_angle, *end_angle)
+            .ends()
+            .get(index)
+            .copied(),
+        SiteKind::Polyline { points } => points.get(index).copied(),
+        SiteKind::Polygon { rings } => {
+            let (ring, k) = ring_index(rings, index)?;
+            Some(ring[k])
+        }
         _ => None,
     }
+}
+
+/// Edge `index` of a segment (itself), a polyline, or a polygon's rings (numbered as
+/// [`chain_edges`] gives them), found ring by ring; `None` for other kinds or an index
+/// out of range.
+fn chain_edge(site: &Site, index: usize) -> Option<(Point, Point)> {
+    match &site.kind {
+        SiteKind::Segment { from, to } => (index == 0).then_some((*from, *to)),
+        SiteKind::Polyline { points } => Some((*points.get(index)?, *points.get(index + 1)?)),
+        SiteKind::Polygon { rings } => {
+            let (ring, k) = ring_index(rings, index)?;
+            Some((ring[k], ring[(k + 1) % ring.len()]))
+        }
+        _ => None,
+    }
+}
+
+/// The ring holding item `index` of the rings' points (or closing edges) numbered
+/// across them, and its index there.
+fn ring_index(rings: &[Vec<Point>], mut index: usize) -> Option<(&[Point], usize)> {
+    for ring in rings {
+        if index < ring.len() {
+            return Some((ring, index));
+        }
+        index -= ring.len();
+    }
+    None
 }

@@ -56,6 +56,13 @@ impl Point {
     pub fn norm(self) -> f64 {
         (self.x * self.x + self.y * self.y).sqrt()
     }
+    /// `hypot(x, y)`: slower than [`Point::norm`], but right where `x²` overflows
+    /// (beyond 1e154) or underflows, as the gradients of quadratic fields with large
+    /// or small factors do.
+    #[inline]
+    pub fn norm_wide(self) -> f64 {
+        self.x.hypot(self.y)
+    }
     #[inline]
     /// The Euclidean distance to `o`.
     pub fn dist(self, o: Point) -> f64 {

@@ -83,7 +83,7 @@ impl Checker<'_> {
         let k = hit.gen;
         if k != a && k != b {
             let (_, gk) = self.eval(k, x);
-            if (dmin - hit.value) / (gmin - gk).norm().max(1e-12) > 1e-9 * self.scale {
+            if super::excess_length(dmin - hit.value, gmin, gk) > 1e-9 * self.scale {
                 // still nearer after MAX_SPLIT_DEPTH splits (a cascade of cells narrower
                 // than the grid: a curve drawn with chords far shorter than its step):
                 // no crossing of a and b, and no edge of theirs could cover it

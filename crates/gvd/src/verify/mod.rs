@@ -190,6 +190,15 @@ fn at(p: Point) -> String {
     format!("({}, {})", f(p.x), f(p.y))
 }
 
+/// An excess `d_a − d_b > 0` of one field over another as a length: the excess over
+/// `|∇d_a − ∇d_b|` (first order), floored at `1e-12` of the larger gradient. Only the
+/// ratio counts, so multiplying every field by one factor (a Möbius scale of 1e300)
+/// leaves it alone; the gradients' norms are `hypot`s, whose squares would overflow.
+fn excess_length(excess: f64, ga: Point, gb: Point) -> f64 {
+    let floor = 1e-12 * ga.norm_wide().max(gb.norm_wide());
+    excess / (ga - gb).norm_wide().max(floor).max(f64::MIN_POSITIVE)
+}
+
 fn finite(p: Point) -> bool {
     p.x.is_finite() && p.y.is_finite()
 }
@@ -311,12 +320,13 @@ impl<'a> Checker<'a> {
     /// none: divided by the gradients' small difference (two sites nearly in line with
     /// `q`) it would be rounding divided by rounding.
     fn intrusion(&self, q: Point, dmin: f64, gmin: Point, gens: &[usize]) -> (f64, usize) {
-        let rounding = 8.0 * f64::EPSILON * (dmin.abs() + q.x.abs().max(q.y.abs()));
+        let position = q.x.abs().max(q.y.abs()) * gmin.norm_wide();
+        let rounding = 8.0 * f64::EPSILON * (dmin.abs() + position);
         match self.near.at(q) {
             None => (self.near.inside_depth(q), usize::MAX),
             Some(hit) if !gens.contains(&hit.gen) && dmin - hit.value > rounding => {
                 let (_, gk) = self.eval(hit.gen, q);
-                ((dmin - hit.value) / (gmin - gk).norm().max(1e-12), hit.gen)
+                (excess_length(dmin - hit.value, gmin, gk), hit.gen)
             }
             Some(hit) => (0.0, hit.gen),
         }
@@ -332,12 +342,15 @@ impl<'a> Checker<'a> {
         let (mut vb, mut gb) = self.eval(b, q);
         let mut far = None;
         for _ in 0..4 {
-            let (d, g) = (va - vb, ga - gb);
-            let gn = g.norm();
-            if !d.is_finite() || gn <= 1e-12 {
+            let (d, g) = (
+                field::difference(&self.fields[a], &self.fields[b], q),
+                ga - gb,
+            );
+            let gn = g.norm_wide();
+            if !d.is_finite() || gn <= 1e-12 * ga.norm_wide().max(gb.norm_wide()) {
                 break;
             }
-            let step = g * (-d / (gn * gn));
+            let step = g * (1.0 / gn) * (-d / gn);
             let sl = step.norm();
             if sl > cap {
                 far = Some((d.abs() / gn).max(cap));
@@ -350,11 +363,13 @@ impl<'a> Checker<'a> {
             (va, ga) = self.eval(a, q);
             (vb, gb) = self.eval(b, q);
         }
-        let (d, gn) = (va - vb, (ga - gb).norm());
+        let d = field::difference(&self.fields[a], &self.fields[b], q);
+        let gn = (ga - gb).norm_wide();
         // Where both fields measure to the same point (a shared end's wedge, which
         // either site may name) they coincide: d and its gradient are rounding alone,
-        // and their ratio means nothing.
-        let resid = if d.abs() <= 1e-12 * self.scale {
+        // and their ratio means nothing (d in length units: over the fields' slope).
+        let slope = ga.norm_wide().max(gb.norm_wide());
+        let resid = if d.abs() <= 1e-12 * self.scale * slope {
             0.0
         } else {
             d.abs() / gn
@@ -385,18 +400,21 @@ impl<'a> Checker<'a> {
     /// tangent joint: `d_a − d_b` vanishes to second order across it), the first-order
     /// estimate `|d_a − d_b| / |∇(d_a − d_b)|` divides rounding by rounding on it.
     fn bracket(&self, q: Point, a: usize, b: usize, g: Point) -> Option<f64> {
-        let len = g.norm();
+        let len = g.norm_wide();
         if !(len > 0.0 && len.is_finite()) {
             return None;
         }
         let g = g * (1.0 / len);
-        let diff = |x: Point| self.fields[a].value(x) - self.fields[b].value(x);
+        let diff = |x: Point| field::difference(&self.fields[a], &self.fields[b], x);
         let mut best = None;
         let mut s = self.tol;
         for _ in 0..=40 {
             let changes = [g.perp(), g].iter().any(|&n| {
                 let (lo, hi) = (diff(q - n * s), diff(q + n * s));
-                lo.is_finite() && hi.is_finite() && lo * hi <= 0.0
+                // signs compared, not a product: that of two values near 1e-300 (a
+                // Möbius scale of 1e-300) underflows to 0, a "change" everywhere
+                let changes = lo == 0.0 || hi == 0.0 || (lo < 0.0) != (hi < 0.0);
+                lo.is_finite() && hi.is_finite() && changes
             });
             if !changes {
                 break;

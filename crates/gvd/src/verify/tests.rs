@@ -660,3 +660,130 @@ fn the_nearest_site_grid_of_a_tiny_domain_stays_small() {
     assert!(start.elapsed().as_secs_f64() < 5.0, "{:?}", start.elapsed());
     assert!(report.passed, "{}", report.summary_line());
 }
+
+/// Möbius points of equal scale `s` and weight 0: `s·|q − p|²`, whose diagram is the
+/// Euclidean one at every `s`.
+fn moebius(p: &[Point], s: f64) -> Vec<SiteKind> {
+    p.iter()
+        .map(|&at| SiteKind::Point {
+            at,
+            metric: Metric::Moebius {
+                scale: s,
+                weight: 0.0,
+            },
+        })
+        .collect()
+}
+
+#[test]
+fn verdicts_do_not_change_when_every_field_is_multiplied_by_one_factor() {
+    // gradients of 1e300 (their squares overflow) and of 1e-300 (theirs underflow)
+    for s in [1.0, 2f64.powi(996), 2f64.powi(-996)] {
+        let (euclidean, exact) = three_points();
+        let p: Vec<Point> = euclidean
+            .sites()
+            .iter()
+            .filter_map(|x| match x.kind {
+                SiteKind::Point { at, .. } => Some(at),
+                _ => None,
+            })
+            .collect();
+        let sc = scene(moebius(&p, s));
+        let r = check(&sc, &exact);
+        assert!(r.passed, "s = {s:e}: {} {:?}", r.summary_line(), r.problems);
+        let mut bent = exact.clone();
+        let c = bent.vertices[0].at;
+        let end = bent.edges[0].points[1];
+        let off = (end - c).perp() * (3.0 * EPS / end.dist(c));
+        bent.edges[0].points = smallvec![c, c.lerp(end, 0.5) + off, end];
+        let r = check(&sc, &bent);
+        assert!(
+            !r.passed && r.sound < 1.0,
+            "s = {s:e}: {}",
+            r.summary_line()
+        );
+        assert!(
+            (r.worst_edge_error / (3.0 * EPS) - 1.0).abs() < 0.2,
+            "s = {s:e}: {}",
+            r.summary_line()
+        );
+        let mut moved = exact.clone();
+        moved.vertices[0].at = c + Point::new(3.0 * EPS, 0.0);
+        let r = check(&sc, &moved);
+        assert_eq!(r.vertices_ok, (0, 1), "s = {s:e}: {}", r.summary_line());
+    }
+}
+
+#[test]
+fn a_crossing_through_a_third_region_is_split_at_every_factor() {
+    // c's region separates a's from b's below the domain's bottom row of grid nodes
+    // (grid 2: nodes at ±0.5); the diagram has the edges (a, c) and (b, c) only, their
+    // vertex at (0, −1.3) outside the domain
+    let p = [
+        Point::new(-0.6, -0.5),
+        Point::new(0.6, -0.5),
+        Point::new(0.0, -0.3),
+    ];
+    let mut d = VoronoiComplex::default();
+    for (i, j) in [(0, 2), (1, 2)] {
+        let (m, dir) = (p[i].lerp(p[j], 0.5), (p[j] - p[i]).perp());
+        let ends = [
+            ray_exit(m, dir, domain()),
+            ray_exit(m, dir * -1.0, domain()),
+        ];
+        d.edges.push(edge(i, j, None, None, &ends));
+    }
+    let opts = VerifyOptions {
+        grid: 2,
+        ..Default::default()
+    };
+    for s in [1.0, 2f64.powi(996), 2f64.powi(-996)] {
+        let r = verify(&scene(moebius(&p, s)), &d, &opts).unwrap();
+        assert!(r.passed, "s = {s:e}: {} {:?}", r.summary_line(), r.problems);
+    }
+}
+
+#[test]
+fn far_bisector_of_near_points_is_checked_to_rounding() {
+    // two ends 0.01 apart (from a cut of a coastline), seen from 1e7 away: their
+    // distances differ from f64's by an ulp (1.9e-9) and their gradients by 3e-10
+    let p = [
+        Point::new(4.7233925, 60.998646),
+        Point::new(4.732553, 60.997696),
+    ];
+    let dom = Aabb::from_array([-1e7, -1e7, 1e7, 1e7]);
+    let sites = euclid(&[(p[0].x, p[0].y), (p[1].x, p[1].y)]);
+    let eps = 1.2e-3;
+    let sc = Scene::new(
+        dom,
+        eps,
+        Mode::Voronoi,
+        sites
+            .into_iter()
+            .map(|kind| Site { id: None, kind })
+            .collect(),
+    )
+    .unwrap();
+    let across = (p[1] - p[0]) * (1.0 / p[1].dist(p[0]));
+    let line = |by: f64| {
+        let m = p[0].lerp(p[1], 0.5) + across * by;
+        let ends = [
+            ray_exit(m, across.perp(), dom),
+            ray_exit(m, across.perp() * -1.0, dom),
+        ];
+        VoronoiComplex {
+            edges: vec![edge(0, 1, None, None, &ends)],
+            ..Default::default()
+        }
+    };
+    let r = check(&sc, &line(0.0));
+    assert!(r.passed, "{} {:?}", r.summary_line(), r.problems);
+    assert!(r.worst_edge_error < 0.1 * eps, "{}", r.summary_line());
+    let r = check(&sc, &line(3.0 * eps));
+    assert!(!r.passed, "{}", r.summary_line());
+    assert!(
+        (r.worst_edge_error / (3.0 * eps) - 1.0).abs() < 0.1,
+        "{}",
+        r.summary_line()
+    );
+}

@@ -11,18 +11,30 @@ impl Checker<'_> {
     /// One Gauss–Newton step towards `d_i(v + s) = t` for all generators `i` (unknowns
     /// `s`, `t`): solves `(JᵀJ + δI) x = −Jᵀr` with rows `J_i = (∇d_i, −1)` and
     /// `r_i = d_i − mean d`. Returns the step and the values and gradients at `v`.
+    /// The fields are divided by a power of two near their largest gradient first (the
+    /// same step, as the tie does not change when every field is multiplied by one
+    /// factor): `JᵀJ` would overflow with gradients beyond 1e154 (a Möbius scale of
+    /// 1e300) and underflow with tiny ones.
     pub(super) fn gauss_newton_step(&self, v: Point, gens: &[usize]) -> (Point, Vec<(f64, Point)>) {
         let ev: Vec<(f64, Point)> = gens.iter().map(|&g| self.eval(g, v)).collect();
         let mean = ev.iter().map(|e| e.0).sum::<f64>() / ev.len() as f64;
+        let largest = ev
+            .iter()
+            .fold(0.0f64, |m, e| m.max(e.1.x.abs()).max(e.1.y.abs()));
+        let unit = if largest > 0.0 && largest.is_finite() {
+            2f64.powi(-(largest.log2().round() as i32))
+        } else {
+            1.0
+        };
         let mut m = [[0.0f64; 3]; 3];
         let mut rhs = [0.0f64; 3];
         for &(val, g) in &ev {
-            let j = [g.x, g.y, -1.0];
+            let j = [g.x * unit, g.y * unit, -1.0];
             for r in 0..3 {
                 for c in 0..3 {
                     m[r][c] += j[r] * j[c];
                 }
-                rhs[r] -= j[r] * (val - mean);
+                rhs[r] -= j[r] * ((val - mean) * unit);
             }
         }
         let reg = 1e-12 * (m[0][0] + m[1][1] + m[2][2]);
@@ -62,13 +74,13 @@ impl Checker<'_> {
                     m
                 }
             });
-        let gmax = ev.iter().map(|e| e.1.norm()).fold(0.0, f64::max);
+        let gmax = ev.iter().map(|e| e.1.norm_wide()).fold(0.0, f64::max);
         let spread = if (vmax - vmin).is_finite() {
             vmax - vmin
         } else {
             0.0
         };
-        let mut e_tie = pos.dist(v) + spread / (2.0 * gmax).max(1e-12);
+        let mut e_tie = pos.dist(v) + spread / (2.0 * gmax).max(f64::MIN_POSITIVE);
         // a curved feature listed m times: m of its branches tie there (where only
         // one is left, the vertex ends the feature's ridge at a centre of curvature)
         for &(g, m) in twice {

@@ -805,3 +805,75 @@ proptest::proptest! {
         proptest::prop_assert!(gb[0].contains(g.x) && gb[1].contains(g.y), "{gb:?} vs {g:?}");
     }
 }
+
+/// The end points of a Bézier or B-spline site (its first and last control points).
+fn ends(kind: &SiteKind) -> [Point; 2] {
+    let pts = match kind {
+        SiteKind::Bezier { control_points, .. } | SiteKind::Bspline { control_points, .. } => {
+            control_points
+        }
+        _ => panic!("not a curve"),
+    };
+    [pts[0], pts[pts.len() - 1]]
+}
+
+/// Open sites joined end to end in `voronoi` mode (the letter O's 22 pieces read from
+/// SVG, each its own site): the common normal at each smooth joint is an edge of the two
+/// sites, so every pair of sites that share an end point has an edge; the diagram
+/// passes `gvd verify` (it failed completeness without those edges) and agrees with the
+/// subdivision engine's, which takes each site's exact distance: each of its edge pairs
+/// is there, and each vertex of three sites or more lies within epsilon of one of its
+/// vertices with the same sites or more (a vertex of four sites on the glyph's mirror axis may come as two of
+/// three, closer than epsilon).
+#[test]
+fn joined_sites_in_voronoi_mode_are_split_by_the_normals_at_their_joints() {
+    use gvd::io::{read_scene, Format, ReadOptions};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/glyph-O.svg");
+    let (sc, _) = read_scene(
+        &std::fs::read(path).unwrap(),
+        Format::Svg,
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(sc.mode(), Mode::Voronoi);
+    let ff = run(&sc, Engine::Freeform);
+    let pairs = edge_pairs(&ff);
+    let sites = sc.sites();
+    let tol = 1e-9 * sc.domain().longest_side();
+    let mut joined = 0;
+    for i in 0..sites.len() {
+        for j in i + 1..sites.len() {
+            let (a, b) = (ends(&sites[i].kind), ends(&sites[j].kind));
+            if a.iter().any(|p| b.iter().any(|q| p.dist(*q) <= tol)) {
+                joined += 1;
+                assert!(
+                    pairs.contains(&[i, j]),
+                    "no edge between joined sites {i} and {j}"
+                );
+            }
+        }
+    }
+    assert_eq!(joined, 22);
+    let options = gvd::VerifyOptions {
+        grid: 128,
+        ..Default::default()
+    };
+    let report = gvd::verify(&sc, &ff, &options).unwrap();
+    assert!(report.passed, "{report:?}");
+    let sub = run(&sc, Engine::Subdivision);
+    for p in edge_pairs(&sub) {
+        assert!(pairs.contains(&p), "subdivision edge {p:?} missing");
+    }
+    // (vertices of two sites only mark where an edge's nearest spans change)
+    for v in ff.vertices.iter().filter(|v| v.sites.len() >= 3) {
+        assert!(
+            sub.vertices
+                .iter()
+                .any(|w| w.at.dist(v.at) < sc.epsilon()
+                    && v.sites.iter().all(|s| w.sites.contains(s))),
+            "vertex {:?} of {:?}",
+            v.at,
+            v.sites
+        );
+    }
+}

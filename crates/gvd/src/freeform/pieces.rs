@@ -2,9 +2,10 @@
 //! into Bézier spans by knot insertion (Boehm's algorithm on homogeneous control points,
 //! every knot of the curve's range raised to multiplicity `degree`, Farin02 ch. 10); the
 //! spans are grouped into C1 pieces, split where the tangent direction jumps (corners).
-//! Open curves get a corner at each end, except where (in `complex` and `medial_axis`
-//! modes) two open sites join end to end: one corner where the tangent turns, or a
-//! [`Joint`] where it does not; chains of joined sites that close up bound a region.
+//! Open curves get a corner at each end, except where two open sites join end to end:
+//! a [`Joint`] where the tangent does not turn, and where it does one corner (in
+//! `complex` and `medial_axis` modes; each site's own in `voronoi` mode); in those two
+//! modes chains of joined sites that close up bound a region.
 
 use crate::complex::{FeatureKind, Generator};
 use crate::geom::bezier::RationalBezier;
@@ -414,7 +415,9 @@ fn turns(a: Point, b: Point, angle: f64) -> bool {
 /// free-form curves are skipped (the caller refuses them). In `complex` and
 /// `medial_axis` modes, open sites joined end to end are one curve: a joint is a corner
 /// (one, with the two sites' tangents) only where the tangent turns, and a chain that
-/// closes up bounds a region like a closed curve.
+/// closes up bounds a region like a closed curve. In `voronoi` mode, sites joined end
+/// to end without a turn meet at a joint, whose normal is their edge, and keep their
+/// own corners where the tangent turns.
 pub fn pieces(scene: &Scene) -> Pieces {
     let mode = scene.mode();
     let mut out = Pieces {
@@ -450,26 +453,44 @@ pub fn pieces(scene: &Scene) -> Pieces {
             })
         })
         .collect();
-    let links = if out.featured {
-        links(&sites, JOIN * scene.domain().longest_side())
-    } else {
-        vec![[None, None]; sites.len()]
-    };
-    let sides = sides(&sites, &links, mode);
+    let mut links = links(&sites, JOIN * scene.domain().longest_side());
     // a turn at a joint below `2 chord / diagonal` moves the edge along the mean normal
     // by less than `chord` anywhere in the domain: no corner there
     let diagonal = scene.domain().width().hypot(scene.domain().height());
     let joint_turn = (2.0 * super::chord(scene) / diagonal).max(CORNER_ANGLE);
     // a site's tangent at end `end` of site `l.site`, in the direction of a site whose
     // end `end` is linked there (reversed when both ends are starts, or both ends)
-    let linked_tangent = |l: Link, end: usize| {
-        let t = sites[l.site].as_ref().unwrap().tangent[l.end];
-        if l.end == end {
-            t * -1.0
-        } else {
-            t
-        }
+    let linked_tangent = |links: &[[Option<Link>; 2]], site: usize, end: usize| {
+        let l = links[site][end]?;
+        let t = sites[l.site].as_ref()?.tangent[l.end];
+        Some(if l.end == end { t * -1.0 } else { t })
     };
+    if !out.featured {
+        // whole sites are the generators: two sites that meet end to end without a
+        // turn are split by the common normal there (a joint, as in the other modes);
+        // where the tangent turns, each keeps the corner at its end
+        let smooth: Vec<[bool; 2]> = (0..sites.len())
+            .map(|i| {
+                [0, 1].map(|end| {
+                    linked_tangent(&links, i, end).is_some_and(|t| {
+                        let own = sites[i].as_ref().map_or(t, |s| s.tangent[end]);
+                        !turns(own, t, joint_turn)
+                    })
+                })
+            })
+            .collect();
+        for (ends, smooth) in links.iter_mut().zip(smooth) {
+            for (l, smooth) in ends.iter_mut().zip(smooth) {
+                if !smooth {
+                    *l = None;
+                }
+            }
+        }
+    }
+    // loops bound regions in `complex` and `medial_axis` modes only: in `voronoi` mode
+    // the diagram lies on both sides of joined open sites
+    let no_links = vec![[None, None]; sites.len()];
+    let sides = sides(&sites, if out.featured { &links } else { &no_links }, mode);
     // per site: the indices of its first and last spans in `out.spans`
     let mut end_spans: Vec<[usize; 2]> = vec![[0, 0]; sites.len()];
     for (site, s) in sites.iter().enumerate() {
@@ -504,8 +525,8 @@ pub fn pieces(scene: &Scene) -> Pieces {
             let other = match links[site][end] {
                 None => zero,
                 Some(l) if l.site < site => return None,
-                Some(l) => {
-                    let t = linked_tangent(l, end);
+                Some(_) => {
+                    let t = linked_tangent(&links, site, end).unwrap_or(zero);
                     if !turns(own, t, joint_turn) {
                         return None;
                     }
@@ -563,9 +584,11 @@ pub fn pieces(scene: &Scene) -> Pieces {
     }
     for (i, ends) in links.iter().enumerate() {
         for (end, l) in ends.iter().enumerate() {
-            let Some(l) = *l else { continue };
-            let own = sites[i].as_ref().unwrap();
-            let other = linked_tangent(l, end);
+            let (Some(l), Some(own), Some(other)) =
+                (*l, sites[i].as_ref(), linked_tangent(&links, i, end))
+            else {
+                continue;
+            };
             if l.site < i || turns(own.tangent[end], other, joint_turn) {
                 continue;
             }

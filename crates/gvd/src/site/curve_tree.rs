@@ -13,8 +13,8 @@
 //!   allow (and so does the generalized gradient on the curve's ridges).
 //! * **Pair bound.** The difference of two such fields, narrowed by the mean value form.
 
-use super::PairBound;
-use crate::geom::Aabb;
+use super::{DistanceField, PairBound};
+use crate::geom::{Aabb, Axis, Point};
 use crate::num::interval::round_down;
 use crate::num::Interval;
 
@@ -41,6 +41,66 @@ pub(super) trait CurveTree {
     /// An enclosure of the distance's gradient at the points `q` of `b` whose nearest
     /// point lies under `n`.
     fn gradient_from(&self, b: &Aabb, n: u32) -> [Interval; 2];
+}
+
+/// A curve's distance field over its [`CurveTree`], given the nearest point of the curve
+/// to a point; [`DistanceField`] follows.
+pub(super) trait CurveField: CurveTree + Send + Sync {
+    /// The distance from `q` to the curve and a nearest point of it, searched in the
+    /// nodes `from` (which hold every point of the curve that can be nearest to `q`), or
+    /// over the whole curve (`None`); `(∞, q)` where none is found.
+    fn nearest_point(&self, q: Point, from: Option<&[u32]>) -> (f64, Point);
+}
+
+impl<T: CurveField> DistanceField for T {
+    type State = CurveState;
+
+    fn state(&self, b: &Aabb) -> CurveState {
+        state(self, b)
+    }
+
+    fn split(&self, s: &CurveState, b: &Aabb, axis: Axis, at: f64) -> (CurveState, CurveState) {
+        let (l, r) = b.split(axis, at);
+        (refine(self, &l, &s.nodes), refine(self, &r, &s.nodes))
+    }
+
+    fn bound(&self, s: &CurveState, _b: &Aabb) -> Interval {
+        s.bound()
+    }
+
+    fn gradient_bound(&self, s: &CurveState, _b: &Aabb) -> Option<[Interval; 2]> {
+        Some(s.gradient)
+    }
+
+    fn restricts(&self) -> bool {
+        true
+    }
+
+    /// The nodes of `s` that may hold a nearest point for some point of `to`.
+    fn restrict(&self, s: &CurveState, to: &Aabb) -> CurveState {
+        refine(self, to, &s.nodes)
+    }
+
+    fn value(&self, q: Point) -> f64 {
+        self.nearest_point(q, None).0
+    }
+
+    /// The search starts from the nodes that `s` kept.
+    fn value_in(&self, s: &CurveState, q: Point) -> f64 {
+        self.nearest_point(q, Some(&s.nodes)).0
+    }
+
+    fn gradient(&self, q: Point) -> Point {
+        match self.nearest_point(q, None) {
+            (d, foot) if d > 0.0 && d.is_finite() => (q - foot) * (1.0 / d),
+            _ => Point::new(0.0, 0.0),
+        }
+    }
+
+    /// The mean value form about the box's centre (`curve_tree::pair`).
+    fn pair(&self, s: &CurveState, other: &Self, so: &CurveState, b: &Aabb) -> PairBound {
+        pair(self, s, other, so, b)
+    }
 }
 
 /// The per-box state: the nodes that may hold a nearest point, with the bounds they

@@ -21,13 +21,12 @@
 //! and the node that exclude both prove a node irrelevant. Point values are the
 //! certified foot-point search of the free-form engine ([`span_distance`]).
 
-use super::curve_tree::{self, direction, meet_normal, unit_bound, CurveState, CurveTree, NONE};
-use super::{DistanceField, PairBound};
+use super::curve_tree::{direction, meet_normal, unit_bound, CurveField, CurveTree, NONE};
 use crate::error::Error;
 use crate::freeform::bisector::SpanForms;
 use crate::freeform::nearest::span_distance;
 use crate::geom::bezier::RationalBezier;
-use crate::geom::{Aabb, Axis, Point};
+use crate::geom::{Aabb, Point};
 use crate::num::interval::{round_down, round_up};
 use crate::num::Interval;
 
@@ -335,57 +334,9 @@ impl CurveTree for FreeformField {
     }
 }
 
-impl DistanceField for FreeformField {
-    type State = CurveState;
-
-    fn state(&self, b: &Aabb) -> CurveState {
-        curve_tree::state(self, b)
-    }
-
-    fn split(&self, s: &CurveState, b: &Aabb, axis: Axis, at: f64) -> (CurveState, CurveState) {
-        let (l, r) = b.split(axis, at);
-        (
-            curve_tree::refine(self, &l, &s.nodes),
-            curve_tree::refine(self, &r, &s.nodes),
-        )
-    }
-
-    fn bound(&self, s: &CurveState, _b: &Aabb) -> Interval {
-        s.bound()
-    }
-
-    fn gradient_bound(&self, s: &CurveState, _b: &Aabb) -> Option<[Interval; 2]> {
-        Some(s.gradient)
-    }
-
-    fn restricts(&self) -> bool {
-        true
-    }
-
-    fn restrict(&self, s: &CurveState, to: &Aabb) -> CurveState {
-        curve_tree::refine(self, to, &s.nodes)
-    }
-
-    fn value(&self, q: Point) -> f64 {
-        self.nearest(q, &[]).0
-    }
-
-    /// Only the spans of the nodes `s` kept.
-    fn value_in(&self, s: &CurveState, q: Point) -> f64 {
-        self.nearest(q, &s.nodes).0
-    }
-
-    fn gradient(&self, q: Point) -> Point {
-        let (d, foot) = self.nearest(q, &[]);
-        if d > 0.0 {
-            (q - foot) * (1.0 / d)
-        } else {
-            Point::new(0.0, 0.0)
-        }
-    }
-
-    /// The mean value form about the box's centre (`curve_tree::pair`).
-    fn pair(&self, s: &CurveState, other: &Self, so: &CurveState, b: &Aabb) -> PairBound {
-        curve_tree::pair(self, s, other, so, b)
+impl CurveField for FreeformField {
+    /// Over the spans of the nodes `from` (every span for the whole curve).
+    fn nearest_point(&self, q: Point, from: Option<&[u32]>) -> (f64, Point) {
+        self.nearest(q, from.unwrap_or(&[]))
     }
 }

@@ -20,7 +20,7 @@ use crate::num::bernstein::Bernstein2;
 use crate::num::interval::{round_down, round_up};
 use crate::num::Interval;
 
-pub(super) use super::curve_tree::NONE;
+pub(super) use crate::site::curve_tree::NONE;
 
 /// A certified point of the curve: it lies on the segment `a`–`b`; `p` is its f64
 /// refinement.
@@ -242,7 +242,7 @@ impl Builder<'_> {
             count: kids.len() as u32,
             witness: witness.1,
             leaf: NONE,
-            unit_normal: super::curve_tree::direction(normal[0], normal[1]),
+            unit_normal: crate::site::curve_tree::direction(normal[0], normal[1]),
             normal,
         });
         Some(e.nodes.len() as u32 - 1)
@@ -332,7 +332,7 @@ impl Builder<'_> {
             count: 0,
             witness,
             leaf: e.leaves.len() as u32 - 1,
-            unit_normal: super::curve_tree::direction(normal[0], normal[1]),
+            unit_normal: crate::site::curve_tree::direction(normal[0], normal[1]),
             normal,
         });
         e.nodes.len() as u32 - 1

@@ -22,10 +22,9 @@ pub mod medial;
 mod nearest;
 mod special;
 
-use super::curve_tree::{self, meet_normal, unit_bound, CurveState, CurveTree, NONE};
-use super::{DistanceField, PairBound};
+use super::curve_tree::{meet_normal, unit_bound, CurveField, CurveTree, NONE};
 use crate::error::Error;
-use crate::geom::{Aabb, Axis, Point};
+use crate::geom::{Aabb, Point};
 use crate::num::interval::{round_down, round_up};
 use crate::num::poly::Poly;
 use crate::num::Interval;
@@ -245,59 +244,15 @@ fn clip_sides(clip: &Aabb, n: &Aabb) -> [(bool, [f64; 2]); 4] {
     ]
 }
 
-impl DistanceField for AlgebraicField {
-    type State = CurveState;
-
-    fn state(&self, b: &Aabb) -> CurveState {
-        curve_tree::state(self, b)
-    }
-
-    fn split(&self, s: &CurveState, b: &Aabb, axis: Axis, at: f64) -> (CurveState, CurveState) {
-        let (l, r) = b.split(axis, at);
-        (
-            curve_tree::refine(self, &l, &s.nodes),
-            curve_tree::refine(self, &r, &s.nodes),
-        )
-    }
-
-    fn bound(&self, s: &CurveState, _b: &Aabb) -> Interval {
-        s.bound()
-    }
-
-    fn gradient_bound(&self, s: &CurveState, _b: &Aabb) -> Option<[Interval; 2]> {
-        Some(s.gradient)
-    }
-
-    fn restricts(&self) -> bool {
-        true
-    }
-
-    /// The nodes of `s` that may hold a nearest point for some point of `to`.
-    fn restrict(&self, s: &CurveState, to: &Aabb) -> CurveState {
-        curve_tree::refine(self, to, &s.nodes)
-    }
-
-    fn value(&self, q: Point) -> f64 {
-        self.nearest(q, None).map_or(f64::INFINITY, |n| n.dist)
-    }
-
-    /// The search for the nearest point starts from the nodes that `s` kept (from the
-    /// root when they hold no sample).
-    fn value_in(&self, s: &CurveState, q: Point) -> f64 {
-        self.nearest(q, Some(&s.nodes))
-            .or_else(|| self.nearest(q, None))
-            .map_or(f64::INFINITY, |n| n.dist)
-    }
-
-    fn gradient(&self, q: Point) -> Point {
-        match self.nearest(q, None) {
-            Some(n) if n.dist > 0.0 => (q - n.foot) * (1.0 / n.dist),
-            _ => Point::new(0.0, 0.0),
-        }
-    }
-
-    /// The mean value form about the box's centre (`curve_tree::pair`).
-    fn pair(&self, s: &CurveState, other: &Self, so: &CurveState, b: &Aabb) -> PairBound {
-        curve_tree::pair(self, s, other, so, b)
+impl CurveField for AlgebraicField {
+    /// From `from` first, then from the root when those nodes hold no sample.
+    fn nearest_point(&self, q: Point, from: Option<&[u32]>) -> (f64, Point) {
+        let found = match from {
+            Some(nodes) => self
+                .nearest(q, Some(nodes))
+                .or_else(|| self.nearest(q, None)),
+            None => self.nearest(q, None),
+        };
+        found.map_or((f64::INFINITY, q), |n| (n.dist, n.foot))
     }
 }

@@ -194,12 +194,36 @@ fn interval_of(lo: f64, hi: f64, nan: bool, err: f64) -> Interval {
     }
 }
 
-/// de Casteljau value of a 1-D coefficient slice at `t` (overwrites the slice).
+/// de Casteljau value of a 1-D coefficient slice at `t` (may overwrite the slice). Up to
+/// degree 11 through fixed-size copies the compiler unrolls (the same operations).
 #[inline]
 fn casteljau_value(c: &mut [f64], t: f64) -> f64 {
+    macro_rules! fixed {
+        ($($n:literal)*) => {
+            match c.len() {
+                $($n => casteljau_fixed::<$n>(c.try_into().expect("length checked"), t),)*
+                _ => casteljau_slice(c, t),
+            }
+        };
+    }
+    fixed!(2 3 4 5 6 7 8 9 10 11 12)
+}
+
+#[inline]
+fn casteljau_slice(c: &mut [f64], t: f64) -> f64 {
     let n = c.len();
     for r in 1..n {
         for i in 0..n - r {
+            c[i] += t * (c[i + 1] - c[i]);
+        }
+    }
+    c[0]
+}
+
+#[inline]
+fn casteljau_fixed<const N: usize>(mut c: [f64; N], t: f64) -> f64 {
+    for r in 1..N {
+        for i in 0..N - r {
             c[i] += t * (c[i + 1] - c[i]);
         }
     }

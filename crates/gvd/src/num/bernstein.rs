@@ -87,9 +87,25 @@ fn len_of(deg: [usize; 3]) -> usize {
     (deg[0] + 1) * (deg[1] + 1) * (deg[2] + 1)
 }
 
+/// The largest `|c_i|` (NaNs skipped), four lanes at a time.
 #[inline]
 fn max_abs(c: &[f64]) -> f64 {
-    c.iter().fold(0.0, |m: f64, &x| m.max(x.abs()))
+    let mut lanes = [0.0f64; 4];
+    let mut chunks = c.chunks_exact(4);
+    for ch in &mut chunks {
+        for (m, &x) in lanes.iter_mut().zip(ch) {
+            // a NaN compares false and is skipped, as by `f64::max`
+            if x.abs() > *m {
+                *m = x.abs();
+            }
+        }
+    }
+    for &x in chunks.remainder() {
+        if x.abs() > lanes[0] {
+            lanes[0] = x.abs();
+        }
+    }
+    lanes.into_iter().fold(0.0, f64::max)
 }
 
 /// `err` grown by `k` unit roundoffs of magnitude `m + err`, plus an underflow slack.
@@ -147,12 +163,29 @@ fn monomial_table(d: usize, a: f64, b: f64) -> (Vec<f64>, Vec<f64>) {
 
 /// `min b − err`, `max b + err`, outward-rounded; the whole line if anything is NaN/∞.
 fn range_of(coef: &[f64], err: f64) -> Interval {
+    let (lo, hi, nan) = min_max(coef.iter().copied());
+    interval_of(lo, hi, nan, err)
+}
+
+/// The smallest and largest of `values` (`∞`, `−∞` when empty), and whether one is NaN.
+#[inline]
+fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64, bool) {
     let (mut lo, mut hi, mut nan) = (f64::INFINITY, f64::NEG_INFINITY, false);
-    for &c in coef {
-        lo = lo.min(c);
-        hi = hi.max(c);
+    for c in values {
+        if c < lo {
+            lo = c;
+        }
+        if c > hi {
+            hi = c;
+        }
         nan |= c.is_nan();
     }
+    (lo, hi, nan)
+}
+
+/// `[lo − err, hi + err]`, outward-rounded; the whole line if `nan` or not finite.
+#[inline]
+fn interval_of(lo: f64, hi: f64, nan: bool, err: f64) -> Interval {
     let r = Interval::new(lo, hi) + Interval::new(-err, err);
     if nan || !(r.lo.is_finite() && r.hi.is_finite()) {
         Interval::new(f64::NEG_INFINITY, f64::INFINITY)
@@ -161,12 +194,36 @@ fn range_of(coef: &[f64], err: f64) -> Interval {
     }
 }
 
-/// de Casteljau value of a 1-D coefficient slice at `t` (overwrites the slice).
+/// de Casteljau value of a 1-D coefficient slice at `t` (may overwrite the slice). Up to
+/// degree 11 through fixed-size copies the compiler unrolls (the same operations).
 #[inline]
 fn casteljau_value(c: &mut [f64], t: f64) -> f64 {
+    macro_rules! fixed {
+        ($($n:literal)*) => {
+            match c.len() {
+                $($n => casteljau_fixed::<$n>(c.try_into().expect("length checked"), t),)*
+                _ => casteljau_slice(c, t),
+            }
+        };
+    }
+    fixed!(2 3 4 5 6 7 8 9 10 11 12)
+}
+
+#[inline]
+fn casteljau_slice(c: &mut [f64], t: f64) -> f64 {
     let n = c.len();
     for r in 1..n {
         for i in 0..n - r {
+            c[i] += t * (c[i + 1] - c[i]);
+        }
+    }
+    c[0]
+}
+
+#[inline]
+fn casteljau_fixed<const N: usize>(mut c: [f64; N], t: f64) -> f64 {
+    for r in 1..N {
+        for i in 0..N - r {
             c[i] += t * (c[i + 1] - c[i]);
         }
     }
@@ -210,10 +267,16 @@ impl View<'_> {
                 let base = o * (n + 1) * inner;
                 let line = &mut right[base..base + (n + 1) * inner];
                 for r in 1..=n {
-                    for i in 0..=n - r {
-                        let (a, b) = line.split_at_mut((i + 1) * inner);
-                        for (x, &y) in a[i * inner..].iter_mut().zip(&b[..inner]) {
-                            *x += t * (y - *x);
+                    if inner == 1 {
+                        for i in 0..=n - r {
+                            line[i] += t * (line[i + 1] - line[i]);
+                        }
+                    } else {
+                        for i in 0..=n - r {
+                            let (a, b) = line.split_at_mut((i + 1) * inner);
+                            for (x, &y) in a[i * inner..].iter_mut().zip(&b[..inner]) {
+                                *x += t * (y - *x);
+                            }
                         }
                     }
                     left[base + r * inner..base + (r + 1) * inner].copy_from_slice(&line[..inner]);
@@ -261,6 +324,25 @@ impl View<'_> {
         let m = max_abs(self.coef);
         let err = round_up(2.0 * nf * self.err + 3.0 * nf * EPS * (m + self.err) + TINY);
         Form { deg, coef, err }
+    }
+
+    /// `self.derivative(axis).range()` without forming the derivative.
+    fn derivative_range(self, axis: usize) -> Interval {
+        let (outer, n, inner) = layout(self.deg, axis);
+        if n == 0 {
+            return self.derivative(axis).view().range();
+        }
+        let nf = n as f64;
+        let stride = (n + 1) * inner;
+        let (lo, hi, nan) = min_max((0..outer).flat_map(|o| {
+            let line = &self.coef[o * stride..(o + 1) * stride];
+            line.iter()
+                .zip(&line[inner..])
+                .map(move |(&a, &b)| nf * (b - a))
+        }));
+        let m = max_abs(self.coef);
+        let err = round_up(2.0 * nf * self.err + 3.0 * nf * EPS * (m + self.err) + TINY);
+        interval_of(lo, hi, nan, err)
     }
 
     /// Degree elevation to `to ≥ deg` (per axis):
@@ -580,7 +662,14 @@ impl Bernstein1 {
 
     /// The value at `u` (f64 de Casteljau, not certified).
     pub fn eval(&self, u: f64) -> f64 {
-        casteljau_value(&mut self.coef.clone(), u)
+        let mut buf = [0.0; 16];
+        match buf.get_mut(..self.coef.len()) {
+            Some(b) => {
+                b.copy_from_slice(&self.coef);
+                casteljau_value(b, u)
+            }
+            None => casteljau_value(&mut self.coef.clone(), u),
+        }
     }
 
     /// `df/du` (relative parameter; divide by the interval's width for world units).
@@ -768,6 +857,11 @@ impl Bernstein2 {
     /// height (Y) for world units.
     pub fn derivative(&self, axis: Axis) -> Self {
         Self::from_form(self.view().derivative(axis_index(axis)))
+    }
+
+    /// The range of `self.derivative(axis)` (the same enclosure, without forming it).
+    pub fn derivative_range(&self, axis: Axis) -> Interval {
+        self.view().derivative_range(axis_index(axis))
     }
 
     /// The same polynomial at degrees `to ≥ deg`.

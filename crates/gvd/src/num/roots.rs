@@ -453,7 +453,7 @@ fn may_contract(sb: &SystemBox) -> bool {
         return true;
     }
     let partial = |k: usize, axis: Axis, len: f64| {
-        let r = sb.forms[k].derivative(axis).range();
+        let r = sb.forms[k].derivative_range(axis);
         Interval::new(r.lo / len, r.hi / len)
     };
     let j = [

@@ -370,8 +370,13 @@ pub(crate) fn near_coincident_sites(
         return Ok(());
     }
     let extent = bounds_of_points(anchored.iter().map(|a| a.1));
-    let cell = closest.max(extent.longest_side() / 4096.0);
-    let grid = BucketGrid::new(extent, cell, 4096, anchored.len(), |k| {
+    // about 16 cells per candidate (at least 64, at most 4096 along an axis): a finer
+    // grid costs more to allocate than its buckets save
+    let per_axis = (4.0 * (anchored.len() as f64).sqrt())
+        .ceil()
+        .clamp(64.0, 4096.0);
+    let cell = closest.max(extent.longest_side() / per_axis);
+    let grid = BucketGrid::new(extent, cell, per_axis as usize, anchored.len(), |k| {
         Aabb::new(anchored[k].1, anchored[k].1)
     });
     // how far apart two control polygons alike in all else are (their farthest pair)
@@ -411,15 +416,17 @@ pub(crate) fn near_coincident_sites(
         _ => None,
     };
     for (k, &(i, p)) in anchored.iter().enumerate() {
-        let mut near = None;
+        // the earliest site too near (whatever the grid's cells)
+        let mut near: Option<(usize, f64)> = None;
         grid.any_around(p, 1, |j| {
             let earlier = anchored[j as usize].0;
             let d = distance(&sites[i].kind, &sites[earlier].kind);
-            let hit = (j as usize) < k && d.is_some_and(|d| d < closest);
-            if hit {
-                near = d.map(|d| (earlier, d));
+            if let Some(d) = d.filter(|&d| (j as usize) < k && d < closest) {
+                if near.is_none_or(|(e, _)| earlier < e) {
+                    near = Some((earlier, d));
+                }
             }
-            hit
+            false
         });
         if let Some((j, d)) = near {
             let alike = match sites[i].kind {

@@ -56,9 +56,9 @@ pub(crate) struct Scratch {
     chains: Vec<(usize, usize)>,
     twin_from_exit: Vec<u32>,
     new_edges: Vec<(u32, usize, usize)>,
-    /// Vertices with `H < 0` that C4 or C5 kept out of `T`, and new vertices placed
-    /// on an old vertex because the edge's far end was claimed too: 0 when the signs
-    /// were consistent; otherwise the geometry near them may be off.
+    /// Vertices with `H < 0` that C4 kept out of `T`, and new vertices placed on an
+    /// old vertex because the edge's far end was claimed too: 0 when the signs were
+    /// consistent; otherwise the geometry near them may be off.
     pub(crate) overrides: usize,
 }
 
@@ -193,7 +193,12 @@ pub(crate) fn insert_site(
             let (gl, gr) = (g.faces[left as usize].gen, g.faces[right as usize].gen);
             let bis = sites.bisector(gl, gr, from, to);
             let (at, t) = leave_region(&bis, from, to, site, inside);
-            if at == to {
+            // The topology overrules a sign only where the segment claims `to` too. An
+            // exit that rounds onto an unclaimed `to` is a degenerate crossing with
+            // consistent signs: `to` is the segment's own endpoint (the joint's vertex,
+            // reached along the neighbour's separator on the side the joint bends to)
+            // or an old vertex on the segment's separator (cocircular on grid data).
+            if at == to && inside(to, g.vertices[w as usize].t) {
                 scratch.overrides += 1;
             }
             let x = g.add_vertex(at, t);

@@ -877,3 +877,129 @@ fn joined_sites_in_voronoi_mode_are_split_by_the_normals_at_their_joints() {
         );
     }
 }
+
+/// A point and the unit tangent of the rational Bézier of homogeneous control points
+/// `h` at `t` (de Casteljau, and the tangent by a central difference).
+fn bezier_at(h: &[[f64; 3]], t: f64) -> (Point, Point) {
+    let eval = |t: f64| {
+        let mut v = h.to_vec();
+        for r in (1..v.len()).rev() {
+            for i in 0..r {
+                v[i] = std::array::from_fn(|k| v[i][k] + (v[i + 1][k] - v[i][k]) * t);
+            }
+        }
+        Point::new(v[0][0] / v[0][2], v[0][1] / v[0][2])
+    };
+    let dt = 1e-7;
+    let d = eval((t + dt).min(1.0)) - eval((t - dt).max(0.0));
+    (eval(t), d * (1.0 / d.norm()))
+}
+
+/// Where the normals of two curves at `a` (tangent `ta`) and `b` (tangent `tb`) meet.
+fn normals_meet(a: Point, ta: Point, b: Point, tb: Point) -> Option<Point> {
+    // (p − a)·ta = 0 and (p − b)·tb = 0
+    let det = ta.x * tb.y - ta.y * tb.x;
+    if det.abs() < 1e-12 {
+        return None;
+    }
+    let (ca, cb) = (a.dot(ta), b.dot(tb));
+    Some(Point::new(
+        (ca * tb.y - cb * ta.y) / det,
+        (ta.x * cb - tb.x * ca) / det,
+    ))
+}
+
+/// The arc length along the polyline `pts` to its point nearest to `p`.
+fn along(p: Point, pts: &[Point]) -> f64 {
+    let mut best = (f64::INFINITY, 0.0);
+    let mut run = 0.0;
+    for w in pts.windows(2) {
+        let d = w[1] - w[0];
+        let len = d.norm();
+        let u = if len > 0.0 {
+            ((p - w[0]).dot(d) / (len * len)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let dist = p.dist(w[0] + d * u);
+        if dist < best.0 {
+            best = (dist, run + u * len);
+        }
+        run += len;
+    }
+    best.1
+}
+
+/// The free-form engine's edges carry their pieces in parameter space: at each piece's
+/// end feet and at its middle (`r` found here by bisection on the equal-distance
+/// condition), the point where the two spans' normals meet is equidistant from them and
+/// lies within epsilon of the edge's polyline, and each piece runs in the edge's
+/// direction.
+#[test]
+fn edges_carry_their_pieces_in_parameter_space() {
+    for name in [
+        "freeform-convex3-voronoi.json",
+        "freeform-closed6-voronoi.json",
+    ] {
+        let sc = scene(name);
+        let d = run(&sc, Engine::Freeform);
+        let eps = sc.epsilon();
+        let mut checked = 0;
+        for e in &d.edges {
+            assert!(!e.parametric.is_empty(), "{name}: an edge without pieces");
+            let on_edge = |p: Point| poly_dist(p, &e.points) < eps;
+            for piece in &e.parametric {
+                let [c0, c1] = &piece.curves;
+                let (Some(t0), Some(r0), Some(t1), Some(r1)) =
+                    (piece.from[0], piece.from[1], piece.to[0], piece.to[1])
+                else {
+                    continue;
+                };
+                if c0.len() < 2 || c1.len() < 2 {
+                    continue;
+                }
+                let point = |t: f64, r: f64| {
+                    let ((a, ta), (b, tb)) = (bezier_at(c0, t), bezier_at(c1, r));
+                    normals_meet(a, ta, b, tb).map(|p| (p, p.dist(a) - p.dist(b)))
+                };
+                for (t, r) in [(t0, r0), (t1, r1)] {
+                    // (feet at a joint of two spans: the normals are parallel there)
+                    if let Some((p, diff)) = point(t, r) {
+                        assert!(diff.abs() < eps && on_edge(p), "{name}: {p:?} {diff}");
+                        checked += 1;
+                    }
+                }
+                // the piece runs in the edge's direction
+                if let (Some((p, _)), Some((q, _))) = (point(t0, r0), point(t1, r1)) {
+                    let (a, b) = (along(p, &e.points), along(q, &e.points));
+                    assert!(
+                        a <= b + eps,
+                        "{name}: piece from {a} to {b} against the edge"
+                    );
+                }
+                // the middle: bisection on r for equal distances
+                let t = 0.5 * (t0 + t1);
+                let (mut lo, mut hi) = (r0.min(r1), r0.max(r1));
+                let sign = |r: f64| point(t, r).map(|(_, diff)| diff.signum());
+                let (Some(slo), Some(shi)) = (sign(lo), sign(hi)) else {
+                    continue;
+                };
+                if slo == shi || (t1 - t0).abs() < 1e-6 {
+                    continue;
+                }
+                for _ in 0..60 {
+                    let m = 0.5 * (lo + hi);
+                    if sign(m) == Some(slo) {
+                        lo = m;
+                    } else {
+                        hi = m;
+                    }
+                }
+                let (p, _) = point(t, 0.5 * (lo + hi)).unwrap();
+                assert!(on_edge(p), "{name}: middle {p:?} off the edge");
+                checked += 1;
+            }
+        }
+        assert!(checked > 10, "{name}: {checked} points checked");
+    }
+}

@@ -299,6 +299,7 @@ fn diagram_edge(sites: [Generator; 2], points: Vec<Point>) -> Edge {
         sites,
         from: None,
         bisector: Vec::new(),
+        parametric: Vec::new(),
         to: None,
         points: points.into(),
     }

@@ -604,6 +604,7 @@ mod tests {
             sites: sites.map(Generator::Site),
             from: ends[0],
             bisector: Vec::new(),
+            parametric: Vec::new(),
             to: ends[1],
             points: (0..n)
                 .map(|i| a.lerp(b, i as f64 / (n - 1) as f64))
@@ -810,6 +811,7 @@ mod tests {
                 sites: s.map(Generator::Site),
                 from: None,
                 bisector: Vec::new(),
+                parametric: Vec::new(),
                 to: None,
                 points: points.into(),
             })

@@ -81,6 +81,11 @@ pub struct Edge {
     /// asked for, or when a piece has constant clearance; see [`BisectorPiece`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub bisector: Vec<BisectorPiece>,
+    /// The free-form engine's edge in parameter space, piece by piece in the order of
+    /// `points` (empty for the other engines, and after pruning; see
+    /// [`ParametricPiece`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub parametric: Vec<ParametricPiece>,
     /// The distance to the two generators at each of `points` (parallel to it), when
     /// known and asked for ([`VoronoiComplex::add_clearances`]); empty otherwise.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -134,6 +139,24 @@ impl BisectorPiece {
     }
 }
 
+/// One piece of a free-form engine's edge in parameter space (HREK07): the two
+/// generators' rational Bézier spans, and the foot parameters `(t, r)` on them where
+/// the piece starts and ends (in the direction of the edge's `points`). Between them
+/// `t` and `r` move monotonically along the zero set of the bisector function
+/// `F3(t, r)`, and the edge's point is where the curves' normals at `t` and `r` meet
+/// (eqs. 5–7): a user can evaluate it to any precision. A corner is a span of one
+/// control point (its foot parameter `None`); a piece whose feet stay at one joint of
+/// two spans is the common normal there.
+#[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
+pub struct ParametricPiece {
+    /// Each generator's span as homogeneous control points `(w·x, w·y, w)`.
+    pub curves: [Vec<[f64; 3]>; 2],
+    /// The foot parameters on the two spans where the piece starts.
+    pub from: [Option<f64>; 2],
+    /// The foot parameters on the two spans where the piece ends.
+    pub to: [Option<f64>; 2],
+}
+
 /// A site's cell clipped to the domain, as closed rings (last point not repeated).
 #[derive(Clone, PartialEq, Debug, Serialize, Deserialize)]
 pub struct Cell {
@@ -183,6 +206,12 @@ impl VoronoiComplex {
                     }
                 }
                 piece.t = piece.t.map(|t| t * s);
+            }
+            for piece in &mut e.parametric {
+                for h in piece.curves.iter_mut().flatten() {
+                    h[0] *= s;
+                    h[1] *= s;
+                }
             }
         }
         for cell in &mut self.cells {

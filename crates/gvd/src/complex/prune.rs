@@ -97,7 +97,8 @@ struct Run {
 /// notes. Clearances, where the edges carry them, are computed for the new points.
 /// Refuses generators whose nearest points are not known here (point metrics other than
 /// Euclidean, ellipses, fields, algebraic curves), naming the site, and
-/// edges with exact bisector pieces, which it would not cut.
+/// edges with exact bisector pieces, which it would not cut; drops the free-form
+/// engine's parameter-space pieces.
 pub fn prune(
     complex: &mut VoronoiComplex,
     scene: &Scene,
@@ -122,6 +123,10 @@ pub(crate) fn prune_with(
         });
     }
     let counts_before = (complex.edges.len(), complex.vertices.len());
+    // the free-form engine's parameter-space pieces describe the uncut edges
+    for e in &mut complex.edges {
+        e.parametric.clear();
+    }
     let with_clearance = scene.mode() != Mode::Voronoi;
     let clearance = |sites: &[Generator; 2], q: Point| {
         Some(feet.generators_clearance(sites, q)).filter(|r| with_clearance && r.is_finite())
@@ -189,6 +194,7 @@ pub(crate) fn keep_passing(
                 to,
                 points: run.points.into(),
                 bisector: Vec::new(),
+                parametric: Vec::new(),
                 clearance: radii,
                 sites_along: Vec::new(),
             });
@@ -408,6 +414,7 @@ fn placeholder(sites: [Generator; 2]) -> Edge {
         to: None,
         points: Default::default(),
         bisector: Vec::new(),
+        parametric: Vec::new(),
         clearance: Vec::new(),
         sites_along: Vec::new(),
     }

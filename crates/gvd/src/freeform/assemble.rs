@@ -10,7 +10,7 @@
 
 use super::pieces::{Feature, Pieces};
 use super::trim::{End, Run};
-use crate::complex::{Edge, Generator, SmallVec, Vertex, VoronoiComplex};
+use crate::complex::{Edge, Generator, ParametricPiece, SmallVec, Vertex, VoronoiComplex};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::Point;
 use std::collections::HashMap;
@@ -60,6 +60,12 @@ pub fn reach_corners(pieces: &Pieces, runs: &mut [Run], tol: f64, snap: f64) {
                 r.points.push(c);
             }
             r.ends[which] = End::Vertex(Feature::Corner(k));
+            // both feet now at the spans' ends on the corner
+            let end_param = |s: usize| {
+                let c0 = pieces.spans[s].curve.eval(0.0);
+                Some(if c0.dist(c) <= snap { 0.0 } else { 1.0 })
+            };
+            r.feet[which] = [end_param(a), end_param(b)];
         }
     }
 }
@@ -251,6 +257,10 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
         if points.len() < 2 || (from.is_some() && from == to && length <= snap) {
             continue;
         }
+        let parametric = chain
+            .iter()
+            .map(|&(k, rev)| parametric_piece(pieces, &runs[k], rev))
+            .collect();
         complex.edges.push(Edge {
             clearance: Vec::new(),
             sites_along: Vec::new(),
@@ -259,10 +269,39 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
             to,
             points: SmallVec::from_vec(points),
             bisector: Vec::new(),
+            parametric,
         });
     }
     merge_close_vertices(&mut complex, snap);
     (complex, loose)
+}
+
+/// Run `r` in parameter space, in the order of the edge's generators (sorted), its end
+/// feet swapped when it runs against the edge.
+fn parametric_piece(pieces: &Pieces, r: &Run, reversed: bool) -> ParametricPiece {
+    let curve = |f: Feature| match f {
+        Feature::Span(k) => pieces.spans[k].curve.homogeneous().to_vec(),
+        Feature::Corner(k) => {
+            let p = pieces.corners[k].at;
+            vec![[p.x, p.y, 1.0]]
+        }
+    };
+    let [from, to] = if reversed {
+        [r.feet[1], r.feet[0]]
+    } else {
+        r.feet
+    };
+    let mut piece = ParametricPiece {
+        curves: r.pair.map(curve),
+        from,
+        to,
+    };
+    if pieces.generator(r.pair[0]) > pieces.generator(r.pair[1]) {
+        piece.curves.swap(0, 1);
+        piece.from.swap(0, 1);
+        piece.to.swap(0, 1);
+    }
+    piece
 }
 
 /// Merges the vertices closer than `snap`, or joined by an edge no longer than it (a

@@ -70,6 +70,9 @@ pub struct Run {
     pub points: Vec<Point>,
     /// How the first and the last point end.
     pub ends: [End; 2],
+    /// The foot parameters on the two features at the first and the last point
+    /// (`None` on a corner).
+    pub feet: [[Option<f64>; 2]; 2],
 }
 
 /// What the trimming of one branch needs.
@@ -323,7 +326,13 @@ impl Trimmer<'_> {
                     points[j] = self.domain.clamp(points[j]);
                 }
             }
-            runs.push(Run { pair, points, ends });
+            let feet = [evals[0].feet, evals[evals.len() - 1].feet];
+            runs.push(Run {
+                pair,
+                points,
+                ends,
+                feet,
+            });
         }
         runs
     }

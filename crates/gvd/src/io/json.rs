@@ -242,6 +242,7 @@ mod tests {
                 sites: [Generator::Site(0), Generator::Site(3)],
                 from: Some(0),
                 bisector: Vec::new(),
+                parametric: Vec::new(),
                 to: None,
                 points: smallvec![Point::new(0.1, -0.2), Point::new(1.0 / 3.0, 2.0)],
             }],
@@ -288,6 +289,7 @@ mod tests {
                     sites: [Generator::Site(i), Generator::Site(i + 2)],
                     from: Some(i),
                     bisector: Vec::new(),
+                    parametric: Vec::new(),
                     to: None,
                     points: smallvec![p, Point::new(0.5, 1e-300)],
                 });

@@ -209,6 +209,7 @@ fn build_complex(
             to: ends[1],
             points: points.into(),
             bisector: Vec::new(),
+            parametric: Vec::new(),
         });
     }
     out

@@ -39,6 +39,7 @@ fn edge(a: usize, b: usize, from: Option<usize>, to: Option<usize>, pts: &[Point
         sites: [Generator::Site(a), Generator::Site(b)],
         from,
         bisector: Vec::new(),
+        parametric: Vec::new(),
         to,
         points: pts.into(),
     }

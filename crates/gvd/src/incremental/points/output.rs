@@ -166,6 +166,7 @@ fn output_edges(d: &PointDiagram, nodes: &[Node]) -> Vec<Edge> {
             to,
             points: [start * inv, end * inv].into(),
             bisector: Vec::new(),
+            parametric: Vec::new(),
         }
     })
 }

@@ -505,6 +505,7 @@ fn number(
                 to,
                 points: piece,
                 bisector,
+                parametric: Vec::new(),
             });
         }
     }

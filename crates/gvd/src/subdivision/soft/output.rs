@@ -166,6 +166,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
                         to: None,
                         points: std::mem::take(&mut run).into(),
                         bisector: Vec::new(),
+                        parametric: Vec::new(),
                     });
                 }
                 run.clear();
@@ -185,6 +186,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
                         to: None,
                         points: std::mem::take(&mut run).into(),
                         bisector: Vec::new(),
+                        parametric: Vec::new(),
                     });
                 }
                 run.clear();
@@ -202,6 +204,7 @@ pub fn clip(c: VoronoiComplex, d: &Aabb) -> VoronoiComplex {
                 to: if closed { None } else { to },
                 points: run.into(),
                 bisector: Vec::new(),
+                parametric: Vec::new(),
             });
         }
     }

@@ -2,6 +2,9 @@
 //! the curves written here (Cox–de Boor, not the engine's knot insertion), the
 //! incremental engine on segments, and the subdivision engine on circles.
 
+mod common;
+
+use common::edge_pairs;
 use gvd::{compute, Engine, Error, Mode, Options, Point, Scene, SiteKind, VoronoiComplex};
 use std::path::Path;
 
@@ -701,21 +704,6 @@ fn a_corner_at_one_joint_of_a_chain() {
         assert_eq!(at_corner, convex, "s {s}");
         corners_are_vertices_or_generators(&sc, &d, &[corner]);
     }
-}
-
-/// The generator pairs of a diagram's edges, each sorted, as a sorted list.
-fn edge_pairs(d: &VoronoiComplex) -> Vec<[usize; 2]> {
-    let mut pairs: Vec<[usize; 2]> = d
-        .edges
-        .iter()
-        .map(|e| {
-            let (a, b) = (e.sites[0].site(), e.sites[1].site());
-            [a.min(b), a.max(b)]
-        })
-        .collect();
-    pairs.sort();
-    pairs.dedup();
-    pairs
 }
 
 /// The subdivision engine's distance field of free-form curves (a tree of sub-spans)

@@ -1,6 +1,8 @@
 //! Implicit distance fields (Emiris et al. 2013, §3): circles (Apollonius), ellipses and
 //! user-given implicit fields through the subdivision engine.
 
+mod common;
+
 use gvd::complex::Generator;
 use gvd::geom::{Aabb, Axis, Point};
 use gvd::internals::{DistanceField, SiteField};
@@ -241,14 +243,7 @@ fn check_apollonius(scene: &Scene, d: &VoronoiComplex, tol: f64) {
     assert_eq!(d.vertices.len(), brute.len());
     // adjacency: the diagram's edge pairs are exactly the pairs of the brute-force vertices
     // and of the grid (edges without vertices cross the domain)
-    let ours: BTreeSet<[usize; 2]> = d
-        .edges
-        .iter()
-        .map(|e| {
-            let (a, b) = (e.sites[0].site(), e.sites[1].site());
-            [a.min(b), a.max(b)]
-        })
-        .collect();
+    let ours: BTreeSet<[usize; 2]> = common::edge_pairs(d).into_iter().collect();
     let mut theirs = grid_pairs(&circles, &scene.domain(), 500);
     for (_, s) in &brute {
         theirs.insert([s[0], s[1]]);

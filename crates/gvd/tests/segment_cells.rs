@@ -165,20 +165,11 @@ fn a_cell_inside_a_polygon_is_its_hole() {
 #[test]
 fn the_soft_engine_tiles_the_domain() {
     assert!(check_cells_of(&scene_file("segments-0200.json"), Engine::Subdivision, 60) > 3000);
-    let nested = Scene::new(
-        Aabb::from_array([-3.0, -3.0, 3.0, 3.0]),
-        1e-4,
-        Mode::Voronoi,
-        vec![
-            Site::polygon([
-                vec![[-2.0, -2.0], [1.0, -2.0], [1.0, 1.0], [-2.0, 1.0]],
-                vec![[-1.0, -1.0], [-1.0, 0.2], [0.3, 0.2], [0.3, -1.0]],
-            ]),
-            Site::polygon([vec![[-0.5, -0.6], [-0.1, -0.6], [-0.3, -0.3]]]),
-            Site::segment([2.0, -2.5], [2.5, 2.0]),
-            Site::polyline([[1.5, 2.8], [2.0, 2.2], [2.8, 2.6]]),
-        ],
-    )
-    .unwrap();
+    // the polygon with a hole, a triangle in the hole instead of the point, no arc
+    let holed = polygon_with_a_hole();
+    let mut sites = holed.sites().to_vec();
+    sites[1] = Site::polygon([vec![[-0.5, -0.6], [-0.1, -0.6], [-0.3, -0.3]]]);
+    sites.remove(3);
+    let nested = Scene::new(holed.domain(), holed.epsilon(), Mode::Voronoi, sites).unwrap();
     assert!(check_cells_of(&nested, Engine::Subdivision, 60) > 3000);
 }

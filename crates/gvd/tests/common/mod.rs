@@ -169,3 +169,18 @@ pub fn generators(s: &Scene) -> Vec<Generator> {
     }
     out
 }
+
+/// The site pairs of a diagram's edges, each sorted, as a sorted list without repeats.
+pub fn edge_pairs(d: &gvd::VoronoiComplex) -> Vec<[usize; 2]> {
+    let mut pairs: Vec<[usize; 2]> = d
+        .edges
+        .iter()
+        .map(|e| {
+            let (a, b) = (e.sites[0].site(), e.sites[1].site());
+            [a.min(b), a.max(b)]
+        })
+        .collect();
+    pairs.sort();
+    pairs.dedup();
+    pairs
+}

@@ -40,6 +40,8 @@ const MAX_NODES: usize = 1 << 21;
 #[derive(Clone, Debug)]
 pub struct FreeformField {
     spans: Vec<RationalBezier>,
+    /// Each span's control box, which holds it.
+    span_boxes: Vec<Aabb>,
     forms: Vec<SpanForms>,
     nodes: Vec<Node>,
     kids: Vec<u32>,
@@ -94,6 +96,7 @@ impl FreeformField {
         let leaf_size = resolution.max(1e-12 * magnitude);
         let mut field = FreeformField {
             forms: spans.iter().map(SpanForms::new).collect(),
+            span_boxes: spans.iter().map(RationalBezier::control_box).collect(),
             spans: Vec::new(),
             nodes: Vec::new(),
             kids: Vec::new(),
@@ -225,7 +228,7 @@ impl FreeformField {
         let mut best = (f64::INFINITY, q);
         for k in spans {
             let c = &self.spans[k as usize];
-            if c.control_box().outside_distance(q) >= best.0 {
+            if self.span_boxes[k as usize].outside_distance(q) >= best.0 {
                 continue;
             }
             let (d, t) = span_distance(c, &self.forms[k as usize], q);

@@ -132,10 +132,12 @@ impl Parametric {
     /// distances are within `slack` of the least, nearest first, as `(distance, foot,
     /// parameter)`: Newton from every sample within reach (`d_min + spacing + slack`,
     /// `d_min` the nearest sample's distance) that is a local minimum of the sampled
-    /// distance (a foot lies between two samples, one of which is at least as near as
-    /// its other neighbour). Two feet are one minimum unless the distance rises
-    /// between them, on either way round if the piece is a loop (where the distance is
-    /// flat, Newton stops at points about the square root of rounding apart).
+    /// distance, or next to one. (A foot `t*` between samples `j` and `j + 1`, the only
+    /// critical point of the distance from `t_{j−1}` to `t_{j+2}`, makes the nearer of
+    /// the two a local minimum of the samples and the other its neighbour.) Two feet are
+    /// one minimum unless the distance rises between them, on either way round if the
+    /// piece is a loop (where the distance is flat, Newton stops at points about the
+    /// square root of rounding apart).
     pub(super) fn local_feet(&self, q: Point, slack: f64) -> Vec<(f64, Point, f64)> {
         let dist: Vec<f64> = self.samples.iter().map(|s| q.dist(s.0)).collect();
         let reach = dist.iter().fold(f64::INFINITY, |a, &b| a.min(b)) + self.spacing + slack;
@@ -152,11 +154,17 @@ impl Parametric {
             };
             rises(mid) && loop_range.is_none_or(across)
         };
-        let mut feet: Vec<(f64, Point, f64)> = Vec::new();
-        for (k, &(p, t)) in self.samples.iter().enumerate() {
+        let local_min = |k: usize| {
             let before = k.checked_sub(1).map_or(f64::INFINITY, |j| dist[j]);
             let after = dist.get(k + 1).copied().unwrap_or(f64::INFINITY);
-            if dist[k] <= reach && dist[k] <= before.max(after) {
+            dist[k] <= before && dist[k] <= after
+        };
+        let mut feet: Vec<(f64, Point, f64)> = Vec::new();
+        for (k, &(p, t)) in self.samples.iter().enumerate() {
+            let start = local_min(k)
+                || k.checked_sub(1).is_some_and(local_min)
+                || (k + 1 < dist.len() && local_min(k + 1));
+            if dist[k] <= reach && start {
                 let found = self.descend(q, p, t);
                 match feet.iter_mut().find(|f| !rises_between(f, &found)) {
                     Some(f) if found.0 < f.0 => *f = found,

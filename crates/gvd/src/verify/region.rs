@@ -25,16 +25,55 @@ pub(super) struct Region {
     segs: Vec<(Point, Point)>,
     lo: Point,
     hi: Point,
+    /// The segments whose y-range meets each of `SLABS` equal horizontal bands of
+    /// `[lo.y, hi.y]` (compressed rows): an even-odd test looks at one band only.
+    slab_rows: Vec<u32>,
+    slab_members: Vec<u32>,
     curves: Vec<Curve>,
 }
+
+/// Horizontal bands of a region's segment index (about one per segment, at most this).
+const SLABS: usize = 4096;
 
 impl Region {
     pub(super) fn new(segs: Vec<(Point, Point)>) -> Self {
         let (lo, hi) = super::field::bounds(&segs);
+        let slabs = segs.len().clamp(1, SLABS);
+        let band = |y: f64| -> usize {
+            let f = (y - lo.y) / (hi.y - lo.y) * slabs as f64;
+            if f.is_finite() {
+                (f.max(0.0) as usize).min(slabs - 1)
+            } else {
+                0
+            }
+        };
+        let spans: Vec<(usize, usize)> = segs
+            .iter()
+            .map(|(a, b)| (band(a.y.min(b.y)), band(a.y.max(b.y))))
+            .collect();
+        let mut slab_rows = vec![0u32; slabs + 1];
+        for &(f, t) in &spans {
+            for k in f..=t {
+                slab_rows[k + 1] += 1;
+            }
+        }
+        for k in 1..slab_rows.len() {
+            slab_rows[k] += slab_rows[k - 1];
+        }
+        let mut fill: Vec<u32> = slab_rows[..slabs].to_vec();
+        let mut slab_members = vec![0u32; slab_rows[slabs] as usize];
+        for (i, &(f, t)) in spans.iter().enumerate() {
+            for k in f..=t {
+                slab_members[fill[k] as usize] = i as u32;
+                fill[k] += 1;
+            }
+        }
         Region {
             segs,
             lo,
             hi,
+            slab_rows,
+            slab_members,
             curves: Vec::new(),
         }
     }
@@ -59,8 +98,16 @@ impl Region {
         if !(q.x >= self.lo.x && q.x <= self.hi.x && q.y >= self.lo.y && q.y <= self.hi.y) {
             return false;
         }
+        let slabs = self.slab_rows.len() - 1;
+        let f = (q.y - self.lo.y) / (self.hi.y - self.lo.y) * slabs as f64;
+        let k = if f.is_finite() {
+            (f.max(0.0) as usize).min(slabs - 1)
+        } else {
+            0
+        };
+        let row = &self.slab_members[self.slab_rows[k] as usize..self.slab_rows[k + 1] as usize];
         let mut inside = false;
-        for &(a, b) in &self.segs {
+        for &(a, b) in row.iter().map(|&i| &self.segs[i as usize]) {
             let (y0, y1) = (a.y.min(b.y), a.y.max(b.y));
             if q.y >= y0 && q.y < y1 {
                 let x = a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x);

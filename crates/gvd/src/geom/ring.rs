@@ -1,9 +1,9 @@
 //! Closed rings of points (the last point not repeated): area, orientation and
 //! point-in-ring tests.
 
-use super::grid::{bounds_of_points, BucketGrid};
+use super::grid::bounds_of_points;
 use super::predicates::orientation;
-use super::{Aabb, Point};
+use super::Point;
 use std::cmp::Ordering;
 
 /// The signed area by the shoelace formula `½ Σ pᵢ × pᵢ₊₁`: positive for a
@@ -39,23 +39,78 @@ fn ray_crossing(a: Point, b: Point, q: Point) -> Option<f64> {
 
 /// The even-odd test of [`even_odd_contains`] against a fixed set of segments (the
 /// edges of any number of rings: the parity of the crossings of all of them is the
-/// parity of the rings that hold `q`), with the segments bucketed in a grid so that a
-/// ray meets only the cells of its row: about `√n` segments a query, not `n`.
+/// parity of the rings that hold `q`), with the segments listed in equal horizontal
+/// slabs of their bounds: a ray meets only the segments of its own slab. Each segment
+/// is listed in every slab its y-range meets, so that a query's slab holds every segment
+/// the ray can cross; the number of slabs (about one per segment) is lowered where tall
+/// segments would make the lists long in total (at most about `9n` entries).
+#[derive(Clone, Debug)]
 pub(crate) struct RayCrossings {
     segments: Vec<(Point, Point)>,
-    grid: BucketGrid,
+    lo: f64,
+    /// slabs per unit of y
+    scale: f64,
+    /// `members[rows[k]..rows[k + 1]]`: the segments of slab `k`
+    rows: Vec<u32>,
+    members: Vec<u32>,
 }
 
 impl RayCrossings {
     /// The index of `segments`.
     pub(crate) fn new(segments: Vec<(Point, Point)>) -> RayCrossings {
         let extent = bounds_of_points(segments.iter().flat_map(|&(a, b)| [a, b]));
-        let side = extent.longest_side() / (segments.len() as f64).sqrt().max(1.0);
-        let grid = BucketGrid::new(extent, side, 4096, segments.len(), |k| {
-            let (a, b) = segments[k];
-            bounds_of_points([a, b])
-        });
-        RayCrossings { segments, grid }
+        let (lo, height) = (extent.min.y, extent.height());
+        let n = segments.len();
+        let tall: f64 = segments.iter().map(|(a, b)| (a.y - b.y).abs()).sum();
+        // Σ (h_k · slabs / height + 1) entries: at most 8n from the heights
+        let by_entries = 8.0 * n as f64 * height / tall;
+        let slabs = (n as f64).min(by_entries).clamp(1.0, (1u32 << 24) as f64) as usize;
+        let scale = if height > 0.0 && height.is_finite() {
+            slabs as f64 / height
+        } else {
+            0.0
+        };
+        let mut index = RayCrossings {
+            segments,
+            lo,
+            scale,
+            rows: vec![0; slabs + 1],
+            members: Vec::new(),
+        };
+        let spans: Vec<(usize, usize)> = index
+            .segments
+            .iter()
+            .map(|(a, b)| (index.slab(a.y.min(b.y)), index.slab(a.y.max(b.y))))
+            .collect();
+        for &(f, t) in &spans {
+            for k in f..=t {
+                index.rows[k + 1] += 1;
+            }
+        }
+        for k in 1..index.rows.len() {
+            index.rows[k] += index.rows[k - 1];
+        }
+        let mut fill = index.rows[..slabs].to_vec();
+        index.members = vec![0; index.rows[slabs] as usize];
+        for (i, &(f, t)) in spans.iter().enumerate() {
+            for k in f..=t {
+                index.members[fill[k] as usize] = i as u32;
+                fill[k] += 1;
+            }
+        }
+        index
+    }
+
+    /// The slab of height `y` (monotone in `y`, so that a segment's slabs run from that
+    /// of its lowest point to that of its highest).
+    fn slab(&self, y: f64) -> usize {
+        let f = (y - self.lo) * self.scale;
+        let last = self.rows.len() - 2;
+        if f.is_nan() {
+            0
+        } else {
+            (f.max(0.0) as usize).min(last)
+        }
     }
 
     /// Whether the ray from `q` towards +x crosses the segments an odd number of times.
@@ -63,20 +118,16 @@ impl RayCrossings {
         if self.segments.is_empty() {
             return false;
         }
-        let far = Point::new(f64::MAX, q.y);
-        let mut odd = false;
-        // a segment lies in every cell of the row its box meets: it is counted in the
-        // cell that holds its crossing point (clamped to its box against rounding)
-        self.grid.for_each_in(&Aabb::new(q, far), |cell, k| {
-            let (a, b) = self.segments[k as usize];
-            if let Some(x) = ray_crossing(a, b, q) {
-                let x = x.clamp(a.x.min(b.x), a.x.max(b.x));
-                if self.grid.cell_of(Point::new(x, q.y)) == cell {
-                    odd = !odd;
-                }
-            }
-        });
-        odd
+        let k = self.slab(q.y);
+        let row = &self.members[self.rows[k] as usize..self.rows[k + 1] as usize];
+        row.iter()
+            .filter(|&&i| {
+                let (a, b) = self.segments[i as usize];
+                ray_crossing(a, b, q).is_some()
+            })
+            .count()
+            % 2
+            == 1
     }
 }
 

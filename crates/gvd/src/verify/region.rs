@@ -15,6 +15,7 @@
 use super::curve::Curve;
 use super::parametric::spline_site;
 use crate::geom::bspline::RationalBspline;
+use crate::geom::ring::RayCrossings;
 use crate::geom::{segment_distance, Point};
 use crate::scene::{Scene, SiteKind};
 use std::f64::consts::TAU;
@@ -25,55 +26,18 @@ pub(super) struct Region {
     segs: Vec<(Point, Point)>,
     lo: Point,
     hi: Point,
-    /// The segments whose y-range meets each of `SLABS` equal horizontal bands of
-    /// `[lo.y, hi.y]` (compressed rows): an even-odd test looks at one band only.
-    slab_rows: Vec<u32>,
-    slab_members: Vec<u32>,
+    crossings: RayCrossings,
     curves: Vec<Curve>,
 }
-
-/// Horizontal bands of a region's segment index (about one per segment, at most this).
-const SLABS: usize = 4096;
 
 impl Region {
     pub(super) fn new(segs: Vec<(Point, Point)>) -> Self {
         let (lo, hi) = super::field::bounds(&segs);
-        let slabs = segs.len().clamp(1, SLABS);
-        let band = |y: f64| -> usize {
-            let f = (y - lo.y) / (hi.y - lo.y) * slabs as f64;
-            if f.is_finite() {
-                (f.max(0.0) as usize).min(slabs - 1)
-            } else {
-                0
-            }
-        };
-        let spans: Vec<(usize, usize)> = segs
-            .iter()
-            .map(|(a, b)| (band(a.y.min(b.y)), band(a.y.max(b.y))))
-            .collect();
-        let mut slab_rows = vec![0u32; slabs + 1];
-        for &(f, t) in &spans {
-            for k in f..=t {
-                slab_rows[k + 1] += 1;
-            }
-        }
-        for k in 1..slab_rows.len() {
-            slab_rows[k] += slab_rows[k - 1];
-        }
-        let mut fill: Vec<u32> = slab_rows[..slabs].to_vec();
-        let mut slab_members = vec![0u32; slab_rows[slabs] as usize];
-        for (i, &(f, t)) in spans.iter().enumerate() {
-            for k in f..=t {
-                slab_members[fill[k] as usize] = i as u32;
-                fill[k] += 1;
-            }
-        }
         Region {
+            crossings: RayCrossings::new(segs.clone()),
             segs,
             lo,
             hi,
-            slab_rows,
-            slab_members,
             curves: Vec::new(),
         }
     }
@@ -95,28 +59,9 @@ impl Region {
     /// Even-odd test: a segment counts when `min y ≤ q.y < max y` and it crosses the
     /// horizontal line through `q` to the right of `q` (the Python checker's rule).
     fn segments_contain(&self, q: Point) -> bool {
-        if !(q.x >= self.lo.x && q.x <= self.hi.x && q.y >= self.lo.y && q.y <= self.hi.y) {
-            return false;
-        }
-        let slabs = self.slab_rows.len() - 1;
-        let f = (q.y - self.lo.y) / (self.hi.y - self.lo.y) * slabs as f64;
-        let k = if f.is_finite() {
-            (f.max(0.0) as usize).min(slabs - 1)
-        } else {
-            0
-        };
-        let row = &self.slab_members[self.slab_rows[k] as usize..self.slab_rows[k + 1] as usize];
-        let mut inside = false;
-        for &(a, b) in row.iter().map(|&i| &self.segs[i as usize]) {
-            let (y0, y1) = (a.y.min(b.y), a.y.max(b.y));
-            if q.y >= y0 && q.y < y1 {
-                let x = a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x);
-                if x > q.x {
-                    inside = !inside;
-                }
-            }
-        }
-        inside
+        let inside_bounds =
+            q.x >= self.lo.x && q.x <= self.hi.x && q.y >= self.lo.y && q.y <= self.hi.y;
+        inside_bounds && self.crossings.odd(q)
     }
 
     /// The distance from `q` to the boundary.

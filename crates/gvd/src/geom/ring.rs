@@ -93,9 +93,9 @@ impl RayCrossings {
         let mut fill = index.rows[..slabs].to_vec();
         index.members = vec![0; index.rows[slabs] as usize];
         for (i, &(f, t)) in spans.iter().enumerate() {
-            for k in f..=t {
-                index.members[fill[k] as usize] = i as u32;
-                fill[k] += 1;
+            for next in &mut fill[f..=t] {
+                index.members[*next as usize] = i as u32;
+                *next += 1;
             }
         }
         index

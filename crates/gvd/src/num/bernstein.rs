@@ -483,6 +483,8 @@ trait Scalar: Copy + std::ops::Add<Output = Self> + std::ops::Mul<Output = Self>
     fn of(x: f64) -> Self;
     /// `self / d` for a positive integer `d`.
     fn over(self, d: Self) -> Self;
+    /// `self · k` (for an interval the product with the point `k`, as `Mul` forms it).
+    fn times(self, k: f64) -> Self;
 }
 
 impl Scalar for f64 {
@@ -492,6 +494,9 @@ impl Scalar for f64 {
     fn over(self, d: Self) -> Self {
         self / d
     }
+    fn times(self, k: f64) -> Self {
+        self * k
+    }
 }
 
 impl Scalar for Interval {
@@ -500,6 +505,9 @@ impl Scalar for Interval {
     }
     fn over(self, d: Self) -> Self {
         self.div(d).expect("binomials are positive")
+    }
+    fn times(self, k: f64) -> Self {
+        self.scale(k)
     }
 }
 
@@ -514,7 +522,6 @@ fn power_to_bernstein<S: Scalar>(deg: [usize; 3], c: &mut [S], doms: [Interval; 
         if n == 0 {
             continue;
         }
-        let a = S::of(dom.lo);
         let h = S::of(dom.hi) + S::of(-dom.lo);
         let mut pascal = vec![S::of(1.0); n + 1];
         for r in 1..n {
@@ -530,7 +537,7 @@ fn power_to_bernstein<S: Scalar>(deg: [usize; 3], c: &mut [S], doms: [Interval; 
                 if dom.lo != 0.0 {
                     for i in 0..n {
                         for j in (i..n).rev() {
-                            line[j] = line[j] + a * line[j + 1];
+                            line[j] = line[j] + line[j + 1].times(dom.lo);
                         }
                     }
                 }
@@ -908,8 +915,26 @@ impl Bernstein2 {
         if t >= 1.0 {
             return self.edge(axis, 1);
         }
-        let (_, upper) = self.split(axis, t);
-        upper.edge(axis, 0)
+        // the upper part's lower side: each line along `axis` evaluated at `t` by the
+        // same de Casteljau steps as the split, without forming either part
+        let (_, n, inner) = layout([self.deg[0], self.deg[1], 0], axis_index(axis));
+        let mut line = vec![0.0; n + 1];
+        let lines = self.coef.len() / (n + 1);
+        let coef = (0..lines)
+            .map(|k| {
+                let (o, q) = (k / inner, k % inner);
+                for (i, x) in line.iter_mut().enumerate() {
+                    *x = self.coef[(o * (n + 1) + i) * inner + q];
+                }
+                casteljau_value(&mut line, t)
+            })
+            .collect();
+        let err = if n > 0 {
+            grown(self.err, max_abs(&self.coef), 4.0 * n as f64)
+        } else {
+            self.err
+        };
+        Bernstein1 { coef, err }
     }
 
     /// The polynomial in the power basis of the relative coordinates `(u, v)` (variables
@@ -1131,6 +1156,17 @@ mod tests {
     }
 
     proptest! {
+        /// The restriction is the upper part's lower side, bit for bit (coefficients and
+        /// error bound), whichever axis and degrees.
+        #[test]
+        fn restrict_is_the_side_of_the_split(p in poly_strategy(2, 6), t in 0.0..1.0f64, along_x: bool) {
+            let b = Aabb::new(Point::new(-0.5, 0.25), Point::new(1.5, 2.0));
+            let f = Bernstein2::from_poly(&p, &b);
+            let axis = if along_x { Axis::X } else { Axis::Y };
+            let (_, upper) = f.split(axis, t);
+            prop_assert_eq!(f.restrict(axis, t), upper.edge(axis, 0));
+        }
+
         #[test]
         fn sparse_and_dense_conversions_agree(p in poly_strategy(2, 8), x0 in -3.0..3.0f64, y0 in -3.0..3.0f64,
                                              w in 0.001..2.0f64, h in 0.001..2.0f64) {

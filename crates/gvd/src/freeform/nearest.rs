@@ -7,7 +7,7 @@ use super::bisector::SpanForms;
 use super::pieces::{Feature, Pieces};
 use crate::geom::bezier::RationalBezier;
 use crate::geom::Point;
-use crate::num::roots::{isolate, refine};
+use crate::num::roots::{isolate, refine_by_newton};
 
 /// The pieces with their foot-point forms, ready for distance queries.
 pub struct Features<'a> {
@@ -82,7 +82,7 @@ pub fn span_distance(c: &RationalBezier, forms: &SpanForms, q: Point) -> (f64, f
     }
     for root in isolate(&g, 1e-13) {
         let t = if root.certified {
-            refine(&g, root.lo, root.hi)
+            refine_by_newton(&g, root.lo, root.hi)
         } else {
             0.5 * (root.lo + root.hi)
         };

@@ -679,6 +679,33 @@ impl Bernstein1 {
         }
     }
 
+    /// The value and the slope `df/du` at `u` from one de Casteljau triangle: the last
+    /// level's two points `p₀`, `p₁` give `f = p₀ + u (p₁ − p₀)` (the same steps as
+    /// [`Self::eval`]) and `f' = n (p₁ − p₀)` (f64, not certified).
+    pub fn value_and_slope(&self, u: f64) -> (f64, f64) {
+        let n = self.degree();
+        if n == 0 {
+            return (self.coef[0], 0.0);
+        }
+        let mut buf = [0.0; 16];
+        let mut heap;
+        let c: &mut [f64] = match buf.get_mut(..self.coef.len()) {
+            Some(b) => b,
+            None => {
+                heap = self.coef.clone();
+                &mut heap
+            }
+        };
+        c.copy_from_slice(&self.coef);
+        for r in 1..n {
+            for i in 0..=n - r {
+                c[i] += u * (c[i + 1] - c[i]);
+            }
+        }
+        let d = c[1] - c[0];
+        (c[0] + u * d, n as f64 * d)
+    }
+
     /// `df/du` (relative parameter; divide by the interval's width for world units).
     pub fn derivative(&self) -> Self {
         Self::from_form(self.view().derivative(0))

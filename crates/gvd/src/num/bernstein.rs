@@ -477,37 +477,59 @@ impl Form {
     }
 }
 
-/// Scalars for the power → Bernstein conversion: f64 for the coefficients, [`Interval`]
-/// for their certified error.
-trait Scalar: Copy + std::ops::Add<Output = Self> + std::ops::Mul<Output = Self> {
-    fn of(x: f64) -> Self;
+/// A coefficient of the power → Bernstein conversion: its f64 value and an interval
+/// enclosing the exact one, carried through the same operations in one pass.
+#[derive(Clone, Copy)]
+struct Tracked {
+    value: f64,
+    enclosure: Interval,
+}
+
+impl Tracked {
+    fn of(x: f64) -> Self {
+        Tracked {
+            value: x,
+            enclosure: Interval::point(x),
+        }
+    }
+
     /// `self / d` for a positive integer `d`.
-    fn over(self, d: Self) -> Self;
-    /// `self · k` (for an interval the product with the point `k`, as `Mul` forms it).
-    fn times(self, k: f64) -> Self;
+    fn over(self, d: Self) -> Self {
+        Tracked {
+            value: self.value / d.value,
+            enclosure: self
+                .enclosure
+                .div(d.enclosure)
+                .expect("binomials are positive"),
+        }
+    }
+
+    /// `self · k` (the interval's product with the point `k`, as `Mul` forms it).
+    fn times(self, k: f64) -> Self {
+        Tracked {
+            value: self.value * k,
+            enclosure: self.enclosure.scale(k),
+        }
+    }
 }
 
-impl Scalar for f64 {
-    fn of(x: f64) -> Self {
-        x
-    }
-    fn over(self, d: Self) -> Self {
-        self / d
-    }
-    fn times(self, k: f64) -> Self {
-        self * k
+impl std::ops::Add for Tracked {
+    type Output = Tracked;
+    fn add(self, o: Tracked) -> Tracked {
+        Tracked {
+            value: self.value + o.value,
+            enclosure: self.enclosure + o.enclosure,
+        }
     }
 }
 
-impl Scalar for Interval {
-    fn of(x: f64) -> Self {
-        Interval::point(x)
-    }
-    fn over(self, d: Self) -> Self {
-        self.div(d).expect("binomials are positive")
-    }
-    fn times(self, k: f64) -> Self {
-        self.scale(k)
+impl std::ops::Mul for Tracked {
+    type Output = Tracked;
+    fn mul(self, o: Tracked) -> Tracked {
+        Tracked {
+            value: self.value * o.value,
+            enclosure: self.enclosure * o.enclosure,
+        }
     }
 }
 
@@ -515,15 +537,15 @@ impl Scalar for Interval {
 /// `deg`. Per axis with domain `[a, b]`: Taylor shift to `x = a + s`, scale `s = h·u`
 /// (`h = b − a`), divide by `C(n, j)` and take the binomial transform
 /// `b_i = Σ_{j≤i} C(i, j) d_j`.
-fn power_to_bernstein<S: Scalar>(deg: [usize; 3], c: &mut [S], doms: [Interval; 3]) {
-    let mut line: Vec<S> = Vec::new();
+fn power_to_bernstein(deg: [usize; 3], c: &mut [Tracked], doms: [Interval; 3]) {
+    let mut line: Vec<Tracked> = Vec::new();
     for (axis, &dom) in doms.iter().enumerate() {
         let (outer, n, inner) = layout(deg, axis);
         if n == 0 {
             continue;
         }
-        let h = S::of(dom.hi) + S::of(-dom.lo);
-        let mut pascal = vec![S::of(1.0); n + 1];
+        let h = Tracked::of(dom.hi) + Tracked::of(-dom.lo);
+        let mut pascal = vec![Tracked::of(1.0); n + 1];
         for r in 1..n {
             for k in (1..=r).rev() {
                 pascal[k] = pascal[k] + pascal[k - 1];
@@ -541,7 +563,7 @@ fn power_to_bernstein<S: Scalar>(deg: [usize; 3], c: &mut [S], doms: [Interval; 
                         }
                     }
                 }
-                let mut hp = S::of(1.0);
+                let mut hp = Tracked::of(1.0);
                 for (x, &p) in line.iter_mut().zip(&pascal) {
                     *x = (*x * hp).over(p);
                     hp = hp * h;
@@ -563,12 +585,12 @@ fn power_to_bernstein<S: Scalar>(deg: [usize; 3], c: &mut [S], doms: [Interval; 
 /// conversion, `err` = the largest distance from a coefficient to the far end of its
 /// interval-arithmetic enclosure.
 fn from_power(deg: [usize; 3], pow: &[f64], doms: [Interval; 3]) -> Form {
-    let mut coef = pow.to_vec();
-    power_to_bernstein(deg, &mut coef, doms);
-    let mut enc: Vec<Interval> = pow.iter().map(|&x| Interval::point(x)).collect();
-    power_to_bernstein(deg, &mut enc, doms);
+    let mut both: Vec<Tracked> = pow.iter().map(|&x| Tracked::of(x)).collect();
+    power_to_bernstein(deg, &mut both, doms);
+    let coef: Vec<f64> = both.iter().map(|t| t.value).collect();
     let mut err: f64 = 0.0;
-    for (&c, e) in coef.iter().zip(&enc) {
+    for (&c, t) in coef.iter().zip(&both) {
+        let e = t.enclosure;
         let r = round_up((e.hi - c).max(c - e.lo));
         err = if r.is_nan() {
             f64::INFINITY

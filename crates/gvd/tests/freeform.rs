@@ -706,6 +706,46 @@ fn a_corner_at_one_joint_of_a_chain() {
     }
 }
 
+/// The two cubic sites of the 20-cubic glyph that meet at a notch, where the curvature
+/// of both peaks at the joint (-16.628, the two within 1e-5 of each other, and a kink
+/// of 1.3e-5 rad from the rounded coordinates, below what the output resolves: no
+/// corner). Along the joint's normal both feet stay at the joint past the centre of
+/// curvature (the distance to either curve there is flat to fourth order), until the
+/// ridge of the two curves takes over. The curvature constraint used to stop the
+/// normal at the centre of curvature, 2.7e-4 short of the ridge's trace: two loose
+/// ends, in `voronoi` mode (the two sites alone) and in `medial_axis` mode (closed by
+/// two lines on the notch's concave side), and `gvd verify` failed their structure.
+#[test]
+fn the_normal_at_a_notch_runs_past_the_centre_of_curvature_into_the_ridge() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/freeform/freeform-glyph20-medial_axis.json");
+    let glyph: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let (a, b) = (&glyph["sites"][5], &glyph["sites"][6]);
+    let (start, end) = (&a["control_points"][0], &b["control_points"][3]);
+    let top = serde_json::json!([-0.3, 1.6]);
+    let line = |p: &serde_json::Value, q: &serde_json::Value| serde_json::json!({"kind": "bezier", "control_points": [p, q]});
+    for (mode, sites) in [
+        ("voronoi", serde_json::json!([a, b])),
+        (
+            "medial_axis",
+            serde_json::json!([a, b, line(end, &top), line(&top, start)]),
+        ),
+    ] {
+        let v = serde_json::json!({"domain": [-1.0, 0.4, 0.6, 2.0], "epsilon": 0.001,
+                                   "mode": mode, "sites": sites});
+        let sc = Scene::from_json(&v.to_string()).unwrap();
+        let d = run(&sc, Engine::Freeform);
+        no_loose_ends(&sc, &d, &joints(&sc));
+        let options = gvd::VerifyOptions {
+            grid: 128,
+            ..Default::default()
+        };
+        let report = gvd::verify(&sc, &d, &options).unwrap();
+        assert!(report.passed, "{mode}: {report:?}");
+    }
+}
+
 /// The subdivision engine's distance field of free-form curves (a tree of sub-spans)
 /// against the free-form engine (bisectors in parameter space): two algorithm families,
 /// the same vertices within a few epsilon with the same generators, and the same

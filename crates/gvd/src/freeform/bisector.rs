@@ -162,6 +162,7 @@ pub fn ridge_end(a: &RationalBezier, t: f64, b: &RationalBezier, r: f64, tol: f6
         p: p + n * (1.0 / k),
         d: 1.0 / k.abs(),
         feet: [Some(t), Some(r)],
+        at_ends: false,
     })
 }
 

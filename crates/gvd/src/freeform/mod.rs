@@ -151,6 +151,7 @@ pub fn compute_with(
                             p,
                             d: 0.5 * (p.dist(ca.eval(t)) + p.dist(cb.eval(r))),
                             feet: [Some(t), Some(r)],
+                            at_ends: false,
                         })
                     };
                     runs.extend(trimmer.trim([f, g], &eval, br.slab, 8, 1.0));
@@ -166,6 +167,7 @@ pub fn compute_with(
                         p: q,
                         d: q.dist(p),
                         feet: [None, Some(t)],
+                        at_ends: false,
                     })
                 };
                 runs.extend(trimmer.trim(
@@ -190,6 +192,7 @@ pub fn compute_with(
                         p: q,
                         d: q.dist(p0),
                         feet: [None, None],
+                        at_ends: false,
                     })
                 };
                 runs.extend(trimmer.trim([f, g], &eval, (s0, s1), 16, s1 - s0));
@@ -211,6 +214,7 @@ pub fn compute_with(
                 p: j.at + j.normal * s,
                 d: s.abs(),
                 feet: j.feet.map(Some),
+                at_ends: true,
             })
         };
         let pair = j.spans.map(Feature::Span);

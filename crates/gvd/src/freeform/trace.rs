@@ -10,7 +10,7 @@
 
 use crate::geom::{Aabb, Axis, Point};
 use crate::num::bernstein::Bernstein2;
-use crate::num::roots::{isolate, refine, solve_system, SystemOptions};
+use crate::num::roots::{isolate, refine_by_newton, solve_system, SystemOptions};
 
 /// Special points closer than this in `t` share a slab side.
 const SAME_T: f64 = 1e-10;
@@ -35,7 +35,7 @@ pub fn roots_at(f: &Bernstein2, t: f64) -> Vec<f64> {
         .into_iter()
         .map(|root| {
             if root.certified {
-                refine(&col, root.lo, root.hi)
+                refine_by_newton(&col, root.lo, root.hi)
             } else {
                 0.5 * (root.lo + root.hi)
             }
@@ -115,7 +115,7 @@ pub fn branches(f: &Bernstein2, shared: &[Point], stats: &mut TraceStats) -> Vec
         let side = f.edge(Axis::Y, at);
         for root in isolate(&side, 1e-13) {
             let t = if root.certified {
-                refine(&side, root.lo, root.hi)
+                refine_by_newton(&side, root.lo, root.hi)
             } else {
                 0.5 * (root.lo + root.hi)
             };

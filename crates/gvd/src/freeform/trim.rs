@@ -26,6 +26,10 @@ pub struct Eval {
     pub d: f64,
     /// Foot parameters on the first and second feature (`None` for corners).
     pub feet: [Option<f64>; 2],
+    /// The feet are held at the spans' ends on a joint (its normal): one-sided minima,
+    /// which the curvature constraint does not bound; the lower envelope still tests
+    /// whether other points of the spans are nearer.
+    pub at_ends: bool,
 }
 
 /// What a sample is.
@@ -137,7 +141,7 @@ impl Trimmer<'_> {
                     if self.constraints.orientation && !span.side.admits(side) {
                         return Status::Bad;
                     }
-                    if self.constraints.curvature && curv > 1.0 + 1e-9 {
+                    if self.constraints.curvature && !e.at_ends && curv > 1.0 + 1e-9 {
                         return Status::Bad;
                     }
                 }

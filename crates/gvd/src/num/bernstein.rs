@@ -477,29 +477,59 @@ impl Form {
     }
 }
 
-/// Scalars for the power → Bernstein conversion: f64 for the coefficients, [`Interval`]
-/// for their certified error.
-trait Scalar: Copy + std::ops::Add<Output = Self> + std::ops::Mul<Output = Self> {
-    fn of(x: f64) -> Self;
+/// A coefficient of the power → Bernstein conversion: its f64 value and an interval
+/// enclosing the exact one, carried through the same operations in one pass.
+#[derive(Clone, Copy)]
+struct Tracked {
+    value: f64,
+    enclosure: Interval,
+}
+
+impl Tracked {
+    fn of(x: f64) -> Self {
+        Tracked {
+            value: x,
+            enclosure: Interval::point(x),
+        }
+    }
+
     /// `self / d` for a positive integer `d`.
-    fn over(self, d: Self) -> Self;
+    fn over(self, d: Self) -> Self {
+        Tracked {
+            value: self.value / d.value,
+            enclosure: self
+                .enclosure
+                .div(d.enclosure)
+                .expect("binomials are positive"),
+        }
+    }
+
+    /// `self · k` (the interval's product with the point `k`, as `Mul` forms it).
+    fn times(self, k: f64) -> Self {
+        Tracked {
+            value: self.value * k,
+            enclosure: self.enclosure.scale(k),
+        }
+    }
 }
 
-impl Scalar for f64 {
-    fn of(x: f64) -> Self {
-        x
-    }
-    fn over(self, d: Self) -> Self {
-        self / d
+impl std::ops::Add for Tracked {
+    type Output = Tracked;
+    fn add(self, o: Tracked) -> Tracked {
+        Tracked {
+            value: self.value + o.value,
+            enclosure: self.enclosure + o.enclosure,
+        }
     }
 }
 
-impl Scalar for Interval {
-    fn of(x: f64) -> Self {
-        Interval::point(x)
-    }
-    fn over(self, d: Self) -> Self {
-        self.div(d).expect("binomials are positive")
+impl std::ops::Mul for Tracked {
+    type Output = Tracked;
+    fn mul(self, o: Tracked) -> Tracked {
+        Tracked {
+            value: self.value * o.value,
+            enclosure: self.enclosure * o.enclosure,
+        }
     }
 }
 
@@ -507,16 +537,15 @@ impl Scalar for Interval {
 /// `deg`. Per axis with domain `[a, b]`: Taylor shift to `x = a + s`, scale `s = h·u`
 /// (`h = b − a`), divide by `C(n, j)` and take the binomial transform
 /// `b_i = Σ_{j≤i} C(i, j) d_j`.
-fn power_to_bernstein<S: Scalar>(deg: [usize; 3], c: &mut [S], doms: [Interval; 3]) {
-    let mut line: Vec<S> = Vec::new();
+fn power_to_bernstein(deg: [usize; 3], c: &mut [Tracked], doms: [Interval; 3]) {
+    let mut line: Vec<Tracked> = Vec::new();
     for (axis, &dom) in doms.iter().enumerate() {
         let (outer, n, inner) = layout(deg, axis);
         if n == 0 {
             continue;
         }
-        let a = S::of(dom.lo);
-        let h = S::of(dom.hi) + S::of(-dom.lo);
-        let mut pascal = vec![S::of(1.0); n + 1];
+        let h = Tracked::of(dom.hi) + Tracked::of(-dom.lo);
+        let mut pascal = vec![Tracked::of(1.0); n + 1];
         for r in 1..n {
             for k in (1..=r).rev() {
                 pascal[k] = pascal[k] + pascal[k - 1];
@@ -530,11 +559,11 @@ fn power_to_bernstein<S: Scalar>(deg: [usize; 3], c: &mut [S], doms: [Interval; 
                 if dom.lo != 0.0 {
                     for i in 0..n {
                         for j in (i..n).rev() {
-                            line[j] = line[j] + a * line[j + 1];
+                            line[j] = line[j] + line[j + 1].times(dom.lo);
                         }
                     }
                 }
-                let mut hp = S::of(1.0);
+                let mut hp = Tracked::of(1.0);
                 for (x, &p) in line.iter_mut().zip(&pascal) {
                     *x = (*x * hp).over(p);
                     hp = hp * h;
@@ -556,12 +585,12 @@ fn power_to_bernstein<S: Scalar>(deg: [usize; 3], c: &mut [S], doms: [Interval; 
 /// conversion, `err` = the largest distance from a coefficient to the far end of its
 /// interval-arithmetic enclosure.
 fn from_power(deg: [usize; 3], pow: &[f64], doms: [Interval; 3]) -> Form {
-    let mut coef = pow.to_vec();
-    power_to_bernstein(deg, &mut coef, doms);
-    let mut enc: Vec<Interval> = pow.iter().map(|&x| Interval::point(x)).collect();
-    power_to_bernstein(deg, &mut enc, doms);
+    let mut both: Vec<Tracked> = pow.iter().map(|&x| Tracked::of(x)).collect();
+    power_to_bernstein(deg, &mut both, doms);
+    let coef: Vec<f64> = both.iter().map(|t| t.value).collect();
     let mut err: f64 = 0.0;
-    for (&c, e) in coef.iter().zip(&enc) {
+    for (&c, t) in coef.iter().zip(&both) {
+        let e = t.enclosure;
         let r = round_up((e.hi - c).max(c - e.lo));
         err = if r.is_nan() {
             f64::INFINITY
@@ -670,6 +699,33 @@ impl Bernstein1 {
             }
             None => casteljau_value(&mut self.coef.clone(), u),
         }
+    }
+
+    /// The value and the slope `df/du` at `u` from one de Casteljau triangle: the last
+    /// level's two points `p₀`, `p₁` give `f = p₀ + u (p₁ − p₀)` (the same steps as
+    /// [`Self::eval`]) and `f' = n (p₁ − p₀)` (f64, not certified).
+    pub fn value_and_slope(&self, u: f64) -> (f64, f64) {
+        let n = self.degree();
+        if n == 0 {
+            return (self.coef[0], 0.0);
+        }
+        let mut buf = [0.0; 16];
+        let mut heap;
+        let c: &mut [f64] = match buf.get_mut(..self.coef.len()) {
+            Some(b) => b,
+            None => {
+                heap = self.coef.clone();
+                &mut heap
+            }
+        };
+        c.copy_from_slice(&self.coef);
+        for r in 1..n {
+            for i in 0..=n - r {
+                c[i] += u * (c[i + 1] - c[i]);
+            }
+        }
+        let d = c[1] - c[0];
+        (c[0] + u * d, n as f64 * d)
     }
 
     /// `df/du` (relative parameter; divide by the interval's width for world units).
@@ -908,8 +964,26 @@ impl Bernstein2 {
         if t >= 1.0 {
             return self.edge(axis, 1);
         }
-        let (_, upper) = self.split(axis, t);
-        upper.edge(axis, 0)
+        // the upper part's lower side: each line along `axis` evaluated at `t` by the
+        // same de Casteljau steps as the split, without forming either part
+        let (_, n, inner) = layout([self.deg[0], self.deg[1], 0], axis_index(axis));
+        let mut line = vec![0.0; n + 1];
+        let lines = self.coef.len() / (n + 1);
+        let coef = (0..lines)
+            .map(|k| {
+                let (o, q) = (k / inner, k % inner);
+                for (i, x) in line.iter_mut().enumerate() {
+                    *x = self.coef[(o * (n + 1) + i) * inner + q];
+                }
+                casteljau_value(&mut line, t)
+            })
+            .collect();
+        let err = if n > 0 {
+            grown(self.err, max_abs(&self.coef), 4.0 * n as f64)
+        } else {
+            self.err
+        };
+        Bernstein1 { coef, err }
     }
 
     /// The polynomial in the power basis of the relative coordinates `(u, v)` (variables
@@ -1131,6 +1205,17 @@ mod tests {
     }
 
     proptest! {
+        /// The restriction is the upper part's lower side, bit for bit (coefficients and
+        /// error bound), whichever axis and degrees.
+        #[test]
+        fn restrict_is_the_side_of_the_split(p in poly_strategy(2, 6), t in 0.0..1.0f64, along_x: bool) {
+            let b = Aabb::new(Point::new(-0.5, 0.25), Point::new(1.5, 2.0));
+            let f = Bernstein2::from_poly(&p, &b);
+            let axis = if along_x { Axis::X } else { Axis::Y };
+            let (_, upper) = f.split(axis, t);
+            prop_assert_eq!(f.restrict(axis, t), upper.edge(axis, 0));
+        }
+
         #[test]
         fn sparse_and_dense_conversions_agree(p in poly_strategy(2, 8), x0 in -3.0..3.0f64, y0 in -3.0..3.0f64,
                                              w in 0.001..2.0f64, h in 0.001..2.0f64) {

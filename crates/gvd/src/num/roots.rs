@@ -275,6 +275,56 @@ pub fn refine(b: &Bernstein1, mut lo: f64, mut hi: f64) -> f64 {
     }
 }
 
+/// The root bracketed by a sign change of `b` on `[lo, hi]`, as [`refine`] finds it, by
+/// Newton's method kept inside the bracket (Press et al., `rtsafe`): each value's sign
+/// narrows the bracket, and a step that would leave it, or that would not at least halve
+/// the step before last, is a bisection instead. At a simple root it converges
+/// quadratically, a handful of evaluations against bisection's fifty; it stops where a
+/// step no longer moves the iterate (within rounding of the root) or the bracket is two
+/// adjacent floats. Not certified; without a sign change at the ends, as [`refine`].
+pub fn refine_by_newton(b: &Bernstein1, mut lo: f64, mut hi: f64) -> f64 {
+    let (flo, fhi) = (b.eval(lo), b.eval(hi));
+    if flo == 0.0 {
+        return lo;
+    }
+    if fhi == 0.0 {
+        return hi;
+    }
+    if (flo > 0.0) == (fhi > 0.0) || flo.is_nan() || fhi.is_nan() {
+        return if flo.abs() <= fhi.abs() { lo } else { hi };
+    }
+    let rising = fhi > 0.0;
+    let mut x = 0.5 * (lo + hi);
+    let (mut step, mut step_before) = (hi - lo, hi - lo);
+    for _ in 0..256 {
+        let (f, slope) = b.value_and_slope(x);
+        if f == 0.0 || f.is_nan() {
+            return x;
+        }
+        if (f > 0.0) == rising {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let newton = x - f / slope;
+        let next = if newton > lo && newton < hi && (2.0 * f).abs() <= (step_before * slope).abs() {
+            newton
+        } else {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                return x;
+            }
+            mid
+        };
+        (step_before, step) = (step, next - x);
+        if next == x {
+            return x;
+        }
+        x = next;
+    }
+    x
+}
+
 // ---------------------------------------------------------------------------------------
 // Square systems of two bivariate polynomials: subdivision + Krawczyk.
 
@@ -707,7 +757,12 @@ mod tests {
             assert!(iv.certified && iv.lo < *r && *r < iv.hi, "{r} {iv:?}");
             let x = refine(&b, iv.lo, iv.hi);
             assert!((x - r).abs() < 1e-12, "{x} vs {r}");
+            // Newton's method in the bracket lands within rounding of bisection's root
+            let y = refine_by_newton(&b, iv.lo, iv.hi);
+            assert!((y - x).abs() <= 4.0 * f64::EPSILON, "{y} vs {x}");
         }
+        // without a sign change, the end nearer to zero, as bisection
+        assert_eq!(refine_by_newton(&b, 0.3, 0.4), refine(&b, 0.3, 0.4));
         let first = first_root(&b, 1e-6).unwrap();
         assert!(first <= 0.1 && first > 0.1 - 2e-6, "{first}");
         let last = last_root(&b, 1e-6).unwrap();

@@ -12,10 +12,11 @@
 pub mod construct;
 pub mod output;
 pub mod predicate;
+pub mod quadtree;
 pub mod refine;
+pub mod rounds;
 
 use super::budget::{Budget, Limits};
-use super::segments;
 use super::tree::Lattice;
 use super::Output;
 use crate::complex::VoronoiComplex;
@@ -24,7 +25,8 @@ use crate::error::Error;
 use crate::geom::{Aabb, Point};
 use crate::scene::{Mode, Scene};
 use crate::site::polygonal::Polygonal;
-use construct::{Resolved, Resolver, Tol};
+use construct::{Resolver, Tol};
+use quadtree::Quadtree;
 use refine::{Ctx, Node};
 use serde_json::json;
 use std::time::Instant;
@@ -52,9 +54,6 @@ impl Default for Filters {
         }
     }
 }
-
-/// Rounds of local splitting of unresolved boxes before the cut-off decides.
-const MAX_ROUNDS: usize = 48;
 
 /// The box the subdivision runs over: the domain grown by small, unequal fractions of
 /// its size on each side, so that no box side falls on a line of symmetry of the
@@ -108,11 +107,12 @@ fn run_unit(
         min_box: 0.5 * eps,
         budget: &budget,
     };
-    let mut leaves = ctx.subdivide();
+    let leaves = ctx.subdivide();
     budget.check(eps)?;
     let t_subdivide = start.elapsed().as_secs_f64();
     let visited_subdivision = leaves.len();
-    let balance_splits = ctx.balance(&mut leaves);
+    let mut tree = Quadtree::new(lattice.root(), leaves);
+    let balance_splits = ctx.balance(&mut tree);
     budget.check(eps)?;
     let t_refine = start.elapsed().as_secs_f64();
     let tol = Tol {
@@ -125,69 +125,14 @@ fn run_unit(
         tol,
         budget: &budget,
     };
-    let mut local_splits = 0;
-    let mut rounds = 0;
-    // Each round resolves only the leaves without an output: the quarters of the
-    // leaves split in the round before and their neighbours (whose sides those splits
-    // cut). Every other leaf has the same sides, neighbours and nodes as when it was
-    // resolved, hence the same output, up to the numbering of the segments.
-    let mut kept: Vec<Option<Resolved>> = vec![None; leaves.len()];
-    let outputs = loop {
-        watch.check()?;
-        let boxes: Vec<_> = leaves.iter().map(|n| n.ib).collect();
-        let segs = segments::build(&boxes, &lattice);
-        let todo: Vec<bool> = kept.iter().map(Option::is_none).collect();
-        let nodes = construct::via_nodes(&poly, &leaves, &segs, &todo, &tol);
-        let last = rounds >= MAX_ROUNDS || budget.exhausted();
-        let mut marked = vec![false; leaves.len()];
-        for (l, n) in leaves.iter().enumerate() {
-            if !todo[l] {
-                continue;
-            }
-            let ports = construct::ports_of(l, &segs, &nodes);
-            let can_split = !last && ctx.can_split(n);
-            match resolver.resolve(n, &ports, can_split) {
-                Ok(output) => {
-                    let members = if output.pieces.is_empty() {
-                        Vec::new()
-                    } else {
-                        segs.members[segs.rows[l]..segs.rows[l + 1]].to_vec()
-                    };
-                    kept[l] = Some(Resolved { output, members });
-                }
-                Err(_) => marked[l] = true,
-            }
-        }
-        if !marked.iter().any(|&m| m) {
-            break kept
-                .into_iter()
-                .enumerate()
-                .map(|(l, r)| {
-                    let r = r.expect("every leaf is resolved");
-                    r.renumbered(&segs.members[segs.rows[l]..segs.rows[l + 1]])
-                })
-                .collect::<Vec<_>>();
-        }
-        for s in &segs.segments {
-            if let [Some(a), Some(b)] = s.leaves {
-                let (a, b) = (a as usize, b as usize);
-                if marked[a] {
-                    kept[b] = None;
-                }
-                if marked[b] {
-                    kept[a] = None;
-                }
-            }
-        }
-        // not balanced again: the construction takes sides of any number of segments
-        local_splits += ctx.split_marked(&mut leaves, &mut kept, &marked);
-        rounds += 1;
-    };
+    let constructed = rounds::construct(&ctx, &resolver, &mut tree, watch)?;
     budget.check(eps)?;
     let t_construct = start.elapsed().as_secs_f64();
 
-    let uncertified: u32 = outputs.iter().map(|o| o.uncertified).sum();
-    let mut complex = super::assemble::assemble(outputs, 1e-12 * poly.scale, 0.125 * eps);
+    let leaves = tree.into_leaves();
+    let uncertified: u32 = constructed.outputs.iter().map(|o| o.uncertified).sum();
+    let mut complex =
+        super::assemble::assemble(constructed.outputs, 1e-12 * poly.scale, 0.125 * eps);
     output::name_features(&mut complex, &poly);
     let mut complex = output::clip(complex, &domain);
     if scene.mode() == Mode::Voronoi {
@@ -207,9 +152,9 @@ fn run_unit(
             features: poly.features.len(),
             visited_subdivision,
             balance_splits,
-            local_splits,
+            local_splits: constructed.local_splits,
             uncertified,
-            rounds,
+            rounds: constructed.rounds,
             filters: *filters,
         },
     );

@@ -26,7 +26,6 @@ use crate::geom::{Aabb, Point};
 use crate::scene::{Mode, Scene};
 use crate::site::polygonal::Polygonal;
 use construct::{Resolver, Tol};
-use quadtree::Quadtree;
 use refine::{Ctx, Node};
 use serde_json::json;
 use std::time::Instant;
@@ -107,11 +106,10 @@ fn run_unit(
         min_box: 0.5 * eps,
         budget: &budget,
     };
-    let leaves = ctx.subdivide();
+    let mut tree = ctx.subdivide();
     budget.check(eps)?;
     let t_subdivide = start.elapsed().as_secs_f64();
-    let visited_subdivision = leaves.len();
-    let mut tree = Quadtree::new(lattice.root(), leaves);
+    let visited_subdivision = tree.leaf_count();
     let balance_splits = ctx.balance(&mut tree);
     budget.check(eps)?;
     let t_refine = start.elapsed().as_secs_f64();
@@ -129,7 +127,11 @@ fn run_unit(
     budget.check(eps)?;
     let t_construct = start.elapsed().as_secs_f64();
 
-    let leaves = tree.into_leaves();
+    let leaves: Vec<&Node> = constructed
+        .order
+        .iter()
+        .map(|&x| tree.leaf(x).expect("the order lists leaves"))
+        .collect();
     let uncertified: u32 = constructed.outputs.iter().map(|o| o.uncertified).sum();
     let mut complex =
         super::assemble::assemble(constructed.outputs, 1e-12 * poly.scale, 0.125 * eps);
@@ -158,8 +160,8 @@ fn run_unit(
             filters: *filters,
         },
     );
-    let leaves = refine::as_leaves(&leaves);
-    Ok(Output { complex, leaves })
+    let boxes = leaves.iter().map(|n| (n.aabb, n.bs.set.len())).collect();
+    Ok(Output { complex, boxes })
 }
 
 /// The figures of a run.
@@ -179,7 +181,7 @@ struct Stats {
     filters: Filters,
 }
 
-fn add_stats(complex: &mut VoronoiComplex, leaves: &[Node], s: Stats) {
+fn add_stats(complex: &mut VoronoiComplex, leaves: &[&Node], s: Stats) {
     let st = &mut complex.stats;
     st.insert("engine".into(), json!("subdivision"));
     st.insert("algorithm".into(), json!("soft predicates (YSL12)"));

@@ -66,37 +66,45 @@ struct TreeNode {
     /// The first of four consecutive quarters (lower left, lower right, upper left,
     /// upper right), [`NONE`] for a leaf.
     quarters: u32,
-    /// The leaf's node; `None` for an inner node.
-    leaf: Option<Node>,
+    /// The leaf's node in [`Quadtree::leaves`]; [`NONE`] for an inner node.
+    leaf: u32,
 }
 
+/// The tree's nodes, small for fast walks, and its leaves' nodes apart.
 pub struct Quadtree {
     nodes: Vec<TreeNode>,
+    /// The leaves' nodes, with those of leaves since split.
+    leaves: Vec<Node>,
+    /// The number of leaves.
+    live: usize,
 }
 
 impl Quadtree {
-    /// The tree whose leaves are `leaves`, quarters of quarters of `root` listed in
-    /// depth-first order.
-    pub fn new(root: IBox, leaves: Vec<Node>) -> Self {
-        let mut tree = Quadtree {
+    /// The tree of the root box alone, not yet a leaf.
+    pub fn new(root: IBox) -> Self {
+        Quadtree {
             nodes: vec![TreeNode {
                 ib: root,
                 parent: NONE,
                 quarters: NONE,
-                leaf: None,
+                leaf: NONE,
             }],
-        };
-        for n in leaves {
-            let mut at = 0u32;
-            while tree.nodes[at as usize].ib != n.ib {
-                if tree.nodes[at as usize].quarters == NONE {
-                    tree.add_quarters(at);
-                }
-                at = tree.quarter_of(at, n.ib.lo);
-            }
-            tree.nodes[at as usize].leaf = Some(n);
+            leaves: Vec::new(),
+            live: 0,
         }
-        tree
+    }
+
+    /// The number of leaves.
+    pub fn leaf_count(&self) -> usize {
+        self.live
+    }
+
+    /// Makes node `at` a leaf with node `n` (its box).
+    pub fn set_leaf(&mut self, at: u32, n: Node) {
+        debug_assert_eq!(self.nodes[at as usize].ib, n.ib);
+        self.nodes[at as usize].leaf = self.leaves.len() as u32;
+        self.leaves.push(n);
+        self.live += 1;
     }
 
     /// Ids are below this.
@@ -105,8 +113,8 @@ impl Quadtree {
     }
 
     /// Appends the four quarters of node `at` (as [`super::refine::Ctx::split`]
-    /// cuts), without leaves.
-    fn add_quarters(&mut self, at: u32) {
+    /// cuts), without leaves; returns the first one's id.
+    pub fn add_quarters(&mut self, at: u32) -> u32 {
         let [x0, y0] = self.nodes[at as usize].ib.lo;
         let [x1, y1] = self.nodes[at as usize].ib.hi;
         let (xm, ym) = (x0 + (x1 - x0) / 2, y0 + (y1 - y0) / 2);
@@ -121,9 +129,10 @@ impl Quadtree {
                 ib: IBox { lo, hi },
                 parent: at,
                 quarters: NONE,
-                leaf: None,
+                leaf: NONE,
             });
         }
+        self.nodes[at as usize].quarters
     }
 
     /// The quarter of inner node `at` that holds lattice point `p` (half-open boxes).
@@ -153,17 +162,26 @@ impl Quadtree {
         Some(at)
     }
 
+    /// The node of leaf `at`, `None` for an inner node.
     pub fn leaf(&self, at: u32) -> Option<&Node> {
-        self.nodes[at as usize].leaf.as_ref()
+        let k = self.nodes[at as usize].leaf;
+        (k != NONE).then(|| &self.leaves[k as usize])
+    }
+
+    /// The ids of the leaves, in the order of their ids.
+    pub fn leaf_ids(&self) -> Vec<u32> {
+        (0..self.nodes.len() as u32)
+            .filter(|&i| self.nodes[i as usize].leaf != NONE)
+            .collect()
     }
 
     /// The ids of the leaves in depth-first order, quarters in order.
-    pub fn leaf_ids(&self) -> Vec<u32> {
+    pub fn depth_first(&self) -> Vec<u32> {
         let mut out = Vec::new();
         let mut stack = vec![0u32];
         while let Some(at) = stack.pop() {
             let t = &self.nodes[at as usize];
-            if t.leaf.is_some() {
+            if t.leaf != NONE {
                 out.push(at);
             } else if t.quarters != NONE {
                 stack.extend((t.quarters..t.quarters + 4).rev());
@@ -174,21 +192,13 @@ impl Quadtree {
 
     /// Replaces leaf `at` by its `quarters`; returns their ids.
     pub fn split(&mut self, at: u32, quarters: [Node; 4]) -> std::ops::Range<u32> {
-        self.nodes[at as usize].leaf = None;
-        self.add_quarters(at);
-        let first = self.nodes[at as usize].quarters;
+        self.nodes[at as usize].leaf = NONE;
+        self.live -= 1;
+        let first = self.add_quarters(at);
         for (k, n) in quarters.into_iter().enumerate() {
-            self.nodes[first as usize + k].leaf = Some(n);
+            self.set_leaf(first + k as u32, n);
         }
         first..first + 4
-    }
-
-    /// The leaves in depth-first order, quarters in order.
-    pub fn into_leaves(mut self) -> Vec<Node> {
-        let ids = self.leaf_ids();
-        ids.into_iter()
-            .map(|at| self.nodes[at as usize].leaf.take().expect("a leaf"))
-            .collect()
     }
 
     /// Appends the segments of leaf `x`'s boundary to `out`, in the order of

@@ -8,8 +8,7 @@ use super::Filters;
 use crate::geom::Aabb;
 use crate::site::polygonal::Polygonal;
 use crate::subdivision::budget::Budget;
-use crate::subdivision::filter::Certificate;
-use crate::subdivision::tree::{IBox, Lattice, Leaf};
+use crate::subdivision::tree::{IBox, Lattice};
 
 /// A leaf of the soft subdivision.
 #[derive(Clone, Debug)]
@@ -77,28 +76,36 @@ impl Ctx<'_> {
         ])
     }
 
-    /// The subdivision phase from the root box with every feature.
-    pub fn subdivide(&self) -> Vec<Node> {
+    /// The subdivision phase from the root box with every feature: the quadtree of
+    /// its leaves.
+    pub fn subdivide(&self) -> Quadtree {
         let all: Vec<u32> = (0..self.poly.features.len() as u32).collect();
-        let mut stack = vec![self.node(self.lattice.root(), &all)];
-        let mut leaves = Vec::new();
-        while let Some(n) = stack.pop() {
+        let root = self.lattice.root();
+        let mut tree = Quadtree::new(root);
+        let mut stack = vec![(0u32, self.node(root, &all))];
+        while let Some((at, n)) = stack.pop() {
             if !self.budget.take_box() {
                 break;
             }
             if n.bs.set.len() <= 1 || predicate::holds(self.poly, &n.bs, &n.aabb, self.filters) {
-                leaves.push(n);
+                tree.set_leaf(at, n);
                 continue;
             }
             match self.split(&n) {
-                Some(kids) => stack.extend(kids.into_iter().rev()),
-                None => leaves.push(Node {
-                    uncertified: true,
-                    ..n
-                }),
+                Some(kids) => {
+                    let first = tree.add_quarters(at);
+                    stack.extend((first..first + 4).zip(kids).rev());
+                }
+                None => tree.set_leaf(
+                    at,
+                    Node {
+                        uncertified: true,
+                        ..n
+                    },
+                ),
             }
         }
-        leaves
+        tree
     }
 
     /// The refinement phase: splits candidate boxes more than twice as large as a
@@ -145,18 +152,4 @@ impl Ctx<'_> {
         }
         total
     }
-}
-
-/// The nodes as the generic engine's leaves (for its side segments).
-pub fn as_leaves(nodes: &[Node]) -> Vec<Leaf> {
-    nodes
-        .iter()
-        .map(|n| Leaf {
-            ib: n.ib,
-            aabb: n.aabb,
-            sites: n.bs.set.clone(),
-            certificate: Certificate::None,
-            uncertified: n.uncertified,
-        })
-        .collect()
 }

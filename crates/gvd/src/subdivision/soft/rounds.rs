@@ -17,9 +17,10 @@ use crate::subdivision::resolve::{LeafOutput, Port, PortId};
 /// Rounds of local splitting of unresolved boxes before the cut-off decides.
 const MAX_ROUNDS: usize = 48;
 
-/// What the rounds leave: the leaves' outputs in depth-first order, the number of
-/// leaves split and the number of rounds after the first.
+/// What the rounds leave: the leaves in depth-first order and their outputs, the
+/// number of leaves split and the number of rounds after the first.
 pub struct Constructed {
+    pub order: Vec<u32>,
     pub outputs: Vec<LeafOutput>,
     pub local_splits: usize,
     pub rounds: usize,
@@ -130,6 +131,11 @@ pub fn construct(
         let mut marked = Vec::new();
         for &x in &todo {
             let n = tree.leaf(x).expect("todo holds leaves");
+            if !n.candidate() {
+                // no pair of features, so no node on any side
+                kept[x as usize] = Some(LeafOutput::default());
+                continue;
+            }
             scratch.sides.clear();
             tree.side_segments(x, ctx.lattice, &mut scratch.sides);
             let mut ports = std::mem::take(&mut scratch.ports);
@@ -181,12 +187,13 @@ pub fn construct(
         }
         rounds += 1;
     }
-    let outputs = tree
-        .leaf_ids()
-        .into_iter()
-        .map(|x| kept[x as usize].take().expect("every leaf is resolved"))
+    let order = tree.depth_first();
+    let outputs = order
+        .iter()
+        .map(|&x| kept[x as usize].take().expect("every leaf is resolved"))
         .collect();
     Ok(Constructed {
+        order,
         outputs,
         local_splits,
         rounds,

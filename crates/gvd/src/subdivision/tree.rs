@@ -47,7 +47,8 @@ impl Lattice {
         self.cell[0].max(self.cell[1]) / (1u64 << CELL_BITS) as f64
     }
 
-    fn coord(&self, axis: usize, v: u64) -> f64 {
+    /// The plane coordinate along `axis` of lattice coordinate `v`.
+    pub fn coord(&self, axis: usize, v: u64) -> f64 {
         let whole = (v >> CELL_BITS) as f64;
         let frac = (v & ((1u64 << CELL_BITS) - 1)) as f64 / (1u64 << CELL_BITS) as f64;
         let o = if axis == 0 {

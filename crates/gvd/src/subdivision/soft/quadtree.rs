@@ -162,6 +162,12 @@ impl Quadtree {
         Some(at)
     }
 
+    /// The extent of node `at`'s box in lattice units.
+    pub fn extent(&self, at: u32) -> [u64; 2] {
+        let ib = &self.nodes[at as usize].ib;
+        [ib.hi[0] - ib.lo[0], ib.hi[1] - ib.lo[1]]
+    }
+
     /// The node of leaf `at`, `None` for an inner node.
     pub fn leaf(&self, at: u32) -> Option<&Node> {
         let k = self.nodes[at as usize].leaf;
@@ -206,15 +212,29 @@ impl Quadtree {
     pub fn side_segments(&self, x: u32, lattice: &Lattice, out: &mut Vec<SideSegment>) {
         let ib = self.nodes[x as usize].ib;
         let root = self.nodes[0].ib;
+        // the box's plane coordinates, each converted once
+        let lo_at = [lattice.coord(0, ib.lo[0]), lattice.coord(1, ib.lo[1])];
+        let hi_at = [lattice.coord(0, ib.hi[0]), lattice.coord(1, ib.hi[1])];
         for (s, side) in SIDES.iter().enumerate() {
             let (a, along) = (side.axis, 1 - side.axis);
             let line = if side.high { ib.hi[a] } else { ib.lo[a] };
+            let line_at = if side.high { hi_at[a] } else { lo_at[a] };
             let (lo, hi) = (ib.lo[along], ib.hi[along]);
+            let at = |t: f64| {
+                if a == 0 {
+                    Point::new(line_at, t)
+                } else {
+                    Point::new(t, line_at)
+                }
+            };
             let point = |t: u64| {
-                let mut p = [0u64; 2];
-                p[a] = line;
-                p[along] = t;
-                lattice.point(p[0], p[1])
+                if t == lo {
+                    at(lo_at[along])
+                } else if t == hi {
+                    at(hi_at[along])
+                } else {
+                    at(lattice.coord(along, t))
+                }
             };
             // the lattice coordinate just across the side
             let across = if side.high {

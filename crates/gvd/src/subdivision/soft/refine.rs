@@ -135,6 +135,10 @@ impl Ctx<'_> {
             ];
             for p in probes.into_iter().flatten() {
                 while let Some(a) = tree.locate_from(x, p) {
+                    let extent = tree.extent(a);
+                    if extent[0] <= 2 * (x1 - x0) && extent[1] <= 2 * (y1 - y0) {
+                        break; // at most twice as large (decided without its node)
+                    }
                     let n = tree.leaf(a).expect("located nodes are leaves");
                     let too_large =
                         n.candidate() && n.aabb.longest_side() > 2.0 * side * (1.0 + 1e-9);

@@ -2,12 +2,12 @@
 //! for polygonal sets: the Voronoi complex of segments, polylines and polygons from
 //! their corner and edge features ([`crate::site::polygonal`]), purely numerically.
 //!
-//! Three phases, one file each: subdivision and refinement ([`refine`]: boxes split
-//! until `C = C0 ∧ C1 ∧ C2` holds ([`predicate`]), then candidate boxes balanced), and
-//! construction ([`construct`]: via nodes on the side segments, the Voronoi vertex
-//! test, arcs). The leaves' sides and the stitching of arcs into edges are the generic
-//! engine's ([`super::segments`], [`super::assemble`]); [`output`] names the
-//! generators per mode and clips to the domain.
+//! Three phases: subdivision and refinement ([`refine`]: boxes split until
+//! `C = C0 ∧ C1 ∧ C2` holds ([`predicate`]), then candidate boxes balanced), and
+//! construction ([`rounds`] over the leaves' [`quadtree`], which gives each leaf its
+//! side segments; [`construct`]: via nodes on them, the Voronoi vertex test, arcs).
+//! The stitching of arcs into edges is the generic engine's ([`super::assemble`]);
+//! [`output`] names the generators per mode and clips to the domain.
 
 pub mod construct;
 pub mod output;

@@ -2,7 +2,7 @@
 //! vertex to vertex (or to the domain boundary); vertices closer than the tolerance
 //! along an edge are merged into one vertex of higher degree; polylines are simplified.
 
-use super::resolve::{End, FoundVertex, LeafOutput, PortId};
+use super::resolve::{End, FoundVertex, LeafOutput, PiecePoints, PortId};
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::Point;
@@ -17,7 +17,7 @@ enum GEnd {
 struct GPiece {
     pair: [u32; 2],
     ends: [GEnd; 2],
-    points: Vec<Point>,
+    points: PiecePoints,
 }
 
 /// Chains all pieces into the complex's vertices and edges.

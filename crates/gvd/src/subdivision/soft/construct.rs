@@ -14,6 +14,7 @@ use crate::geom::{Aabb, Point};
 use crate::site::polygonal::{Polygonal, Shape};
 use crate::subdivision::budget::Budget;
 use crate::subdivision::resolve::{End, FoundVertex, LeafOutput, Piece, Port};
+use smallvec::smallvec;
 
 /// Tolerances of the construction.
 #[derive(Clone, Copy, Debug)]
@@ -221,7 +222,7 @@ impl Resolver<'_> {
                 out.pieces.push(Piece {
                     pair,
                     ends: [End::Port(w[0].id), End::Port(w[1].id)],
-                    points: vec![w[0].at, w[1].at],
+                    points: smallvec![w[0].at, w[1].at],
                 });
             }
         } else {
@@ -239,7 +240,7 @@ impl Resolver<'_> {
                 out.pieces.push(Piece {
                     pair: p.pair,
                     ends: [End::Port(p.id), End::Vertex(0)],
-                    points: vec![p.at, at],
+                    points: smallvec![p.at, at],
                 });
             }
         }

@@ -4,11 +4,13 @@
 //! beside the incremental engine's, timed in turn in the same run.
 
 use crate::bench::Rng;
+use anyhow::Context;
 use gvd::geom::{Aabb, Point};
 use gvd::io::{Format, ReadOptions};
 use gvd::scene::{Mode, Scene, Site, SiteKind};
 use gvd::SoftFilters;
 use std::collections::{HashMap, HashSet};
+use std::path::Path;
 use std::time::Instant;
 
 /// The filter settings of the table: all on, then one switched off at a time.
@@ -288,7 +290,22 @@ fn reduction(what: &str, ours: &[u64], paper: &[(usize, u64, &str)], without: us
     );
 }
 
-pub fn soft_table(repeat: usize) {
+/// The table; `random_only` skips the filter rows, `save_scenes` is where the
+/// random-segment scenes are written.
+pub fn soft_table(
+    repeat: usize,
+    random_only: bool,
+    save_scenes: Option<&Path>,
+) -> anyhow::Result<()> {
+    if !random_only {
+        filter_table(repeat);
+        println!();
+    }
+    random_rows(repeat, save_scenes)
+}
+
+/// The rows of each scene with each filter setting, and the reductions.
+fn filter_table(repeat: usize) {
     println!(
         "Yap, Sharma, Lien 2012, ¶25: the soft-predicate subdivision with each filter on and off"
     );
@@ -325,8 +342,10 @@ pub fn soft_table(repeat: usize) {
         2,
         0,
     );
+}
 
-    println!();
+/// Both engines on random non-crossing segments, timed in turn.
+fn random_rows(repeat: usize, save_scenes: Option<&Path>) -> anyhow::Result<()> {
     println!("Random non-crossing segments in [0,1]^2: lengths in [0.2, 1]/sqrt(n), SplitMix64 seed 1, epsilon 0.001;");
     println!("one core, best of {repeat}, the two engines timed in turn on the same scene");
     println!(
@@ -335,6 +354,11 @@ pub fn soft_table(repeat: usize) {
     );
     for n in [1_000usize, 10_000] {
         let scene = random_segments(n, 1);
+        if let Some(dir) = save_scenes {
+            let path = dir.join(format!("random-segments-{n}.json"));
+            gvd::io::write_file(&path, gvd::io::json::write_scene(&scene).as_bytes())
+                .with_context(|| format!("writing {}", path.display()))?;
+        }
         let soft = options(gvd::Engine::Subdivision, SoftFilters::default(), None);
         let incremental = options(gvd::Engine::Incremental, SoftFilters::default(), None);
         let (mut best_soft, mut best_incremental) = (f64::INFINITY, f64::INFINITY);
@@ -357,4 +381,5 @@ pub fn soft_table(repeat: usize) {
             incremental_vertices
         );
     }
+    Ok(())
 }

@@ -215,6 +215,13 @@ struct BenchArgs {
     /// Only the shipped scenes (`freeform`), for tests.
     #[arg(long, hide = true)]
     quick: bool,
+    /// Only the random-segments rows (`soft`).
+    #[arg(long)]
+    random_only: bool,
+    /// Also write the random-segment scenes timed to this directory as
+    /// `random-segments-N.json` (`soft`).
+    #[arg(long, value_name = "DIR")]
+    save_scenes: Option<PathBuf>,
 }
 
 /// A finite number > 0 (NaN, infinities, zero and negatives are refused).
@@ -523,7 +530,7 @@ fn bench(args: BenchArgs) -> Result<ExitCode> {
         "emiris-table1" => bench::emiris_table1(args.large, repeat),
         "implicit" => bench_implicit::implicit(args.large, repeat),
         "shou" => bench_algebraic::shou(args.large, repeat),
-        "soft" => bench_soft::soft_table(repeat),
+        "soft" => bench_soft::soft_table(repeat, args.random_only, args.save_scenes.as_deref())?,
         "freeform" => bench_freeform::freeform_table(repeat, args.quick)?,
         other => bail!(
             "unknown table '{}' (known: emiris-table1, implicit, shou, soft, freeform)",

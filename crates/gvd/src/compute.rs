@@ -247,7 +247,7 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
         )?;
         return Ok(Computation {
             complex: out.complex,
-            boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
+            boxes: out.boxes,
         });
     }
     scene.refuse_near_coincident_points()?;
@@ -260,7 +260,7 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     let out = subdivision::run_scene(scene, &options.subdivision.fields, &params, &watch)?;
     Ok(Computation {
         complex: out.complex,
-        boxes: out.leaves.iter().map(|l| (l.aabb, l.sites.len())).collect(),
+        boxes: out.boxes,
     })
 }
 

@@ -2,11 +2,10 @@
 //! vertex to vertex (or to the domain boundary); vertices closer than the tolerance
 //! along an edge are merged into one vertex of higher degree; polylines are simplified.
 
-use super::resolve::{End, FoundVertex, LeafOutput, PortId};
+use super::resolve::{End, FoundVertex, LeafOutput, PiecePoints, PortId};
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::Point;
-use std::collections::HashMap;
 
 /// A piece end after the leaf-local vertex numbers became global.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -18,13 +17,14 @@ enum GEnd {
 struct GPiece {
     pair: [u32; 2],
     ends: [GEnd; 2],
-    points: Vec<Point>,
+    points: PiecePoints,
 }
 
 /// Chains all pieces into the complex's vertices and edges.
 pub fn assemble(outputs: Vec<LeafOutput>, merge_len: f64, simplify_tol: f64) -> VoronoiComplex {
-    let mut vertices: Vec<FoundVertex> = Vec::new();
-    let mut pieces: Vec<GPiece> = Vec::new();
+    let mut vertices: Vec<FoundVertex> =
+        Vec::with_capacity(outputs.iter().map(|o| o.vertices.len()).sum());
+    let mut pieces: Vec<GPiece> = Vec::with_capacity(outputs.iter().map(|o| o.pieces.len()).sum());
     for o in outputs {
         let base = vertices.len();
         let g = |e: End| match e {
@@ -38,20 +38,21 @@ pub fn assemble(outputs: Vec<LeafOutput>, merge_len: f64, simplify_tol: f64) -> 
         }));
         vertices.extend(o.vertices);
     }
-    // link piece ends that share a port
-    let mut at_port: HashMap<PortId, Vec<(usize, usize)>> = HashMap::with_capacity(pieces.len());
+    // link piece ends that share a port: the ends sorted by port, pairs linked
+    let mut at_port: Vec<(PortId, usize, usize)> = Vec::with_capacity(2 * pieces.len());
     for (k, p) in pieces.iter().enumerate() {
         for e in 0..2 {
             if let GEnd::Port(id) = p.ends[e] {
-                at_port.entry(id).or_default().push((k, e));
+                at_port.push((id, k, e));
             }
         }
     }
+    at_port.sort_unstable_by_key(|x| x.0);
     let mut link: Vec<[Option<(usize, usize)>; 2]> = vec![[None, None]; pieces.len()];
-    for ends in at_port.values() {
-        if let [a, b] = ends[..] {
-            link[a.0][a.1] = Some(b);
-            link[b.0][b.1] = Some(a);
+    for group in at_port.chunk_by(|x, y| x.0 == y.0) {
+        if let [(_, ak, ae), (_, bk, be)] = *group {
+            link[ak][ae] = Some((bk, be));
+            link[bk][be] = Some((ak, ae));
         }
     }
     let mut used = vec![false; pieces.len()];
@@ -105,15 +106,15 @@ fn walk(
     loop {
         used[k] = true;
         let p = &pieces[k];
-        let seq: Box<dyn Iterator<Item = &Point>> = if e == 0 {
-            Box::new(p.points.iter())
-        } else {
-            Box::new(p.points.iter().rev())
-        };
-        for &q in seq {
+        let mut add = |q: Point| {
             if points.last() != Some(&q) {
                 points.push(q);
             }
+        };
+        if e == 0 {
+            p.points.iter().for_each(|&q| add(q));
+        } else {
+            p.points.iter().rev().for_each(|&q| add(q));
         }
         let out_end = 1 - e;
         match link[k][out_end] {

@@ -24,7 +24,6 @@ pub use budget::Limits;
 use resolve::{LeafOutput, Port, PortId, Resolver, Tolerances};
 use serde_json::json;
 use std::time::Instant;
-pub use tree::Leaf;
 
 /// Parameters of a subdivision run.
 #[derive(Clone, Copy, Debug)]
@@ -41,10 +40,11 @@ pub struct Params {
     pub limits: Limits,
 }
 
-/// The diagram and the leaves of the subdivision (for pictures and box counts).
+/// The diagram and the leaves of the subdivision (for pictures and box counts): each
+/// leaf's box and its number of sites.
 pub struct Output {
     pub complex: VoronoiComplex,
-    pub leaves: Vec<Leaf>,
+    pub boxes: Vec<(Aabb, usize)>,
 }
 
 impl Params {
@@ -106,8 +106,8 @@ impl Output {
     /// `stats.rescaled_by`.
     fn scale_back(&mut self, s: f64) {
         self.complex.scale(1.0 / s);
-        for leaf in &mut self.leaves {
-            leaf.aabb = Aabb::new(leaf.aabb.min * (1.0 / s), leaf.aabb.max * (1.0 / s));
+        for (b, _) in &mut self.boxes {
+            *b = Aabb::new(b.min * (1.0 / s), b.max * (1.0 / s));
         }
         let stats = &mut self.complex.stats;
         for key in ["resolution", "epsilon_floored_from"] {
@@ -432,7 +432,8 @@ pub(crate) fn run_watched<F: DistanceField>(
     stats.insert("leaves".into(), json!(leaves.len()));
     stats.insert("uncertified_boxes".into(), json!(uncertified));
     stats.insert("local_splits".into(), json!(local_splits));
-    Ok(Output { complex, leaves })
+    let boxes = leaves.iter().map(|l| (l.aabb, l.sites.len())).collect();
+    Ok(Output { complex, boxes })
 }
 
 /// The finest resolution a run over `domain` can give: a few hundred ulps of its largest

@@ -12,6 +12,7 @@ use super::trace;
 use super::tree::Leaf;
 use crate::geom::{Aabb, Axis, Point};
 use crate::site::DistanceField;
+use smallvec::{smallvec, SmallVec};
 
 /// Identifies a port globally: a transition on a shared segment, or one on a split line
 /// inside a leaf.
@@ -36,12 +37,15 @@ pub enum End {
     Vertex(u32),
 }
 
+/// The points of a piece: inline for a straight piece (two points), as most are.
+pub type PiecePoints = SmallVec<[Point; 2]>;
+
 /// A bisector arc inside the leaf between two ends, as a polyline.
 #[derive(Clone, Debug)]
 pub struct Piece {
     pub pair: [u32; 2],
     pub ends: [End; 2],
-    pub points: Vec<Point>,
+    pub points: PiecePoints,
 }
 
 /// A Voronoi vertex found in the leaf, with its generators (sorted).
@@ -212,7 +216,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                 out.pieces.push(Piece {
                     pair,
                     ends: [End::Port(p.id), End::Port(q.id)],
-                    points,
+                    points: points.into(),
                 });
             }
         }
@@ -269,7 +273,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                 out.pieces.push(Piece {
                     pair,
                     ends: [End::Port(p.id), End::Vertex(vi)],
-                    points,
+                    points: points.into(),
                 });
             }
             return true;
@@ -389,7 +393,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                     out.pieces.push(Piece {
                         pair: ordered(p.pair),
                         ends: [End::Port(p.id), End::Port(q.id)],
-                        points: vec![p.at, q.at],
+                        points: smallvec![p.at, q.at],
                     });
                 }
                 return;
@@ -405,7 +409,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
                 out.pieces.push(Piece {
                     pair: ordered(p.pair),
                     ends: [End::Port(p.id), End::Vertex(vi)],
-                    points: vec![p.at, c],
+                    points: smallvec![p.at, c],
                 });
             }
             return;
@@ -421,7 +425,7 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
             out.pieces.push(Piece {
                 pair: ordered(p.pair),
                 ends: [End::Port(p.id), End::Port(q.id)],
-                points: vec![p.at, q.at],
+                points: smallvec![p.at, q.at],
             });
         }
     }

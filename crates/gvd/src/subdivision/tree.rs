@@ -47,7 +47,8 @@ impl Lattice {
         self.cell[0].max(self.cell[1]) / (1u64 << CELL_BITS) as f64
     }
 
-    fn coord(&self, axis: usize, v: u64) -> f64 {
+    /// The plane coordinate along `axis` of lattice coordinate `v`.
+    pub fn coord(&self, axis: usize, v: u64) -> f64 {
         let whole = (v >> CELL_BITS) as f64;
         let frac = (v & ((1u64 << CELL_BITS) - 1)) as f64 / (1u64 << CELL_BITS) as f64;
         let o = if axis == 0 {
@@ -115,8 +116,6 @@ pub struct Leaf {
     /// What the certificate proved when the box stopped (`None`: one site, or stopped at
     /// the resolution cut-off or the lattice's limit).
     pub certificate: Certificate,
-    /// Stopped at the resolution cut-off (or the lattice's limit) without a certificate.
-    pub uncertified: bool,
 }
 
 /// Parameters of the subdivision phase.
@@ -176,13 +175,12 @@ fn recurse<F: DistanceField>(
     }
     let envelope = filter::lower_envelope(fields, &aabb, sites);
     let size = aabb.longest_side();
-    let mut leaf = |sites: Vec<(u32, F::State)>, certificate: Certificate, uncertified: bool| {
+    let mut leaf = |sites: Vec<(u32, F::State)>, certificate: Certificate| {
         out.leaves.push(Leaf {
             ib,
             aabb,
             sites: sites.iter().map(|s| s.0).collect(),
             certificate,
-            uncertified,
         });
         let keep = sites.len() >= 2 && sites.iter().any(|s| fields[s.0 as usize].restricts());
         out.states.push(if keep {
@@ -192,14 +190,14 @@ fn recurse<F: DistanceField>(
         });
     };
     if envelope.sites.len() <= 1 {
-        leaf(envelope.sites, Certificate::None, false);
+        leaf(envelope.sites, Certificate::None);
         return;
     }
     let too_big = params.max_box.is_some_and(|m| size > m * (1.0 + 1e-9));
     if !too_big {
         let certificate = filter::certify(fields, &aabb, &envelope);
         if certificate != Certificate::None {
-            leaf(envelope.sites, certificate, false);
+            leaf(envelope.sites, certificate);
             return;
         }
     }
@@ -211,7 +209,7 @@ fn recurse<F: DistanceField>(
         ib.split(axis)
     };
     let Some((li, ri, mid)) = split else {
-        leaf(sites, Certificate::None, true);
+        leaf(sites, Certificate::None);
         return;
     };
     let at = lattice.point(mid, mid);

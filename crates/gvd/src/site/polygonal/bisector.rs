@@ -7,7 +7,7 @@
 
 use super::{Polygonal, Shape};
 use crate::geom::Point;
-use smallvec::SmallVec;
+use smallvec::{smallvec, SmallVec};
 
 /// `A t² + B t + C`.
 type Quadratic = [f64; 3];
@@ -188,21 +188,21 @@ impl Polygonal {
     /// `tol` of it: straight for lines; for a parabola `y = ((x − cx)² + cy²)/(2 cy)`
     /// in the edge's frame, points at steps `h ≤ √(8 cy tol)` in `x`, whose chords
     /// stray at most `h²/(8 cy)` (the curvature is at most `1/cy`).
-    pub fn trace(&self, f: u32, g: u32, p: Point, q: Point, tol: f64) -> Vec<Point> {
+    pub fn trace(&self, f: u32, g: u32, p: Point, q: Point, tol: f64) -> SmallVec<[Point; 2]> {
         let (c, a, b) = match (self.shape(f), self.shape(g)) {
             (Shape::Corner(c), Shape::Edge(a, b)) | (Shape::Edge(a, b), Shape::Corner(c)) => {
                 (c, a, b)
             }
-            _ => return vec![p, q],
+            _ => return smallvec![p, q],
         };
         let (o, u, n, cx, cy) = Self::parabola(c, a, b);
         if cy <= 0.0 {
-            return vec![p, q];
+            return smallvec![p, q];
         }
         let (xp, xq) = ((p - o).dot(u), (q - o).dot(u));
         let step = (8.0 * cy * tol).sqrt();
         let k = (((xq - xp).abs() / step).ceil() as usize).clamp(1, 1 << 16);
-        let mut out = Vec::with_capacity(k + 1);
+        let mut out = SmallVec::with_capacity(k + 1);
         out.push(p);
         for i in 1..k {
             let x = xp + (xq - xp) * (i as f64 / k as f64);

@@ -13,8 +13,8 @@ use super::refine::Node;
 use crate::geom::{Aabb, Point};
 use crate::site::polygonal::{Polygonal, Shape};
 use crate::subdivision::budget::Budget;
-use crate::subdivision::resolve::{End, FoundVertex, LeafOutput, Piece, Port, PortId};
-use crate::subdivision::segments::Segments;
+use crate::subdivision::resolve::{End, FoundVertex, LeafOutput, Piece, Port};
+use smallvec::smallvec;
 
 /// Tolerances of the construction.
 #[derive(Clone, Copy, Debug)]
@@ -61,77 +61,31 @@ pub fn valid_tie(
     poly.free(q).then_some(d)
 }
 
-/// The sorted intersection of two sorted lists.
-fn intersect(a: &[u32], b: &[u32]) -> Vec<u32> {
-    a.iter()
-        .filter(|x| b.binary_search(x).is_ok())
-        .copied()
-        .collect()
-}
-
-/// The via nodes of every segment on the boundary of a leaf marked in `todo` (none on
-/// the others): for each pair of the features both leaves keep (conservative on the
-/// shared segment), the valid crossings of their bisector.
-pub fn via_nodes(
+/// Appends to `out` the via nodes of the segment `from → to` in their order along it:
+/// for each pair of `cands` (the features both leaves of the segment keep,
+/// conservative on it), the valid crossings of their bisector. `crossings` is scratch.
+pub fn segment_nodes(
     poly: &Polygonal,
-    leaves: &[Node],
-    segs: &Segments,
-    todo: &[bool],
+    cands: &[u32],
+    from: Point,
+    to: Point,
     tol: &Tol,
-) -> Vec<Vec<(Point, [u32; 2])>> {
-    segs.segments
-        .iter()
-        .map(|s| {
-            if !s.leaves.iter().flatten().any(|&l| todo[l as usize]) {
-                return Vec::new();
-            }
-            let cands = match s.leaves {
-                [Some(a), Some(b)] => {
-                    intersect(&leaves[a as usize].bs.set, &leaves[b as usize].bs.set)
-                }
-                [Some(a), None] | [None, Some(a)] => leaves[a as usize].bs.set.clone(),
-                [None, None] => Vec::new(),
-            };
-            let mut out: Vec<(f64, Point, [u32; 2])> = Vec::new();
-            for (i, &f) in cands.iter().enumerate() {
-                for &g in &cands[i + 1..] {
-                    for t in poly.crossings(f, g, s.from, s.to) {
-                        let q = s.from.lerp(s.to, t);
-                        if valid_tie(poly, f, g, q, &cands, tol).is_some() {
-                            out.push((t, q, [f, g]));
-                        }
-                    }
-                }
-            }
-            out.sort_by(|a, b| a.0.total_cmp(&b.0));
-            out.into_iter().map(|(_, q, p)| (q, p)).collect()
-        })
-        .collect()
-}
-
-/// A leaf's output with the segments of its boundary in the round that resolved it
-/// (none kept for an output without pieces).
-#[derive(Clone)]
-pub struct Resolved {
-    pub output: LeafOutput,
-    pub members: Vec<u32>,
-}
-
-impl Resolved {
-    /// The output with its ports on the same segments numbered as `members` (the
-    /// leaf's segments in a later round, in the same order along its boundary).
-    pub fn renumbered(mut self, members: &[u32]) -> LeafOutput {
-        debug_assert!(self.output.pieces.is_empty() || self.members.len() == members.len());
-        for piece in &mut self.output.pieces {
-            for end in &mut piece.ends {
-                if let End::Port(PortId::Segment { segment, .. }) = end {
-                    let k = self.members.iter().position(|s| s == segment);
-                    *segment = members[k.expect("ports lie on the leaf's segments")];
+    crossings: &mut Vec<(f64, Point, [u32; 2])>,
+    out: &mut Vec<(Point, [u32; 2])>,
+) {
+    crossings.clear();
+    for (i, &f) in cands.iter().enumerate() {
+        for &g in &cands[i + 1..] {
+            for t in poly.crossings(f, g, from, to) {
+                let q = from.lerp(to, t);
+                if valid_tie(poly, f, g, q, cands, tol).is_some() {
+                    crossings.push((t, q, [f, g]));
                 }
             }
         }
-        self.output
     }
+    crossings.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out.extend(crossings.iter().map(|&(_, q, p)| (q, p)));
 }
 
 /// Why a box could not be resolved.
@@ -268,7 +222,7 @@ impl Resolver<'_> {
                 out.pieces.push(Piece {
                     pair,
                     ends: [End::Port(w[0].id), End::Port(w[1].id)],
-                    points: vec![w[0].at, w[1].at],
+                    points: smallvec![w[0].at, w[1].at],
                 });
             }
         } else {
@@ -286,7 +240,7 @@ impl Resolver<'_> {
                 out.pieces.push(Piece {
                     pair: p.pair,
                     ends: [End::Port(p.id), End::Vertex(0)],
-                    points: vec![p.at, at],
+                    points: smallvec![p.at, at],
                 });
             }
         }
@@ -424,22 +378,4 @@ fn half_open(b: &Aabb, q: Point) -> bool {
 fn sorted(mut s: [u32; 3]) -> Vec<u32> {
     s.sort_unstable();
     s.to_vec()
-}
-
-/// The nodes on leaf `l`'s boundary, from the shared segments.
-pub fn ports_of(l: usize, segs: &Segments, nodes: &[Vec<(Point, [u32; 2])>]) -> Vec<Port> {
-    let mut ports = Vec::new();
-    for &s in &segs.members[segs.rows[l]..segs.rows[l + 1]] {
-        for (k, &(at, pair)) in nodes[s as usize].iter().enumerate() {
-            ports.push(Port {
-                id: PortId::Segment {
-                    segment: s,
-                    index: k as u32,
-                },
-                at,
-                pair,
-            });
-        }
-    }
-    ports
 }

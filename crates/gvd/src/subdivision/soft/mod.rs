@@ -2,20 +2,21 @@
 //! for polygonal sets: the Voronoi complex of segments, polylines and polygons from
 //! their corner and edge features ([`crate::site::polygonal`]), purely numerically.
 //!
-//! Three phases, one file each: subdivision and refinement ([`refine`]: boxes split
-//! until `C = C0 ∧ C1 ∧ C2` holds ([`predicate`]), then candidate boxes balanced), and
-//! construction ([`construct`]: via nodes on the side segments, the Voronoi vertex
-//! test, arcs). The leaves' sides and the stitching of arcs into edges are the generic
-//! engine's ([`super::segments`], [`super::assemble`]); [`output`] names the
-//! generators per mode and clips to the domain.
+//! Three phases: subdivision and refinement ([`refine`]: boxes split until
+//! `C = C0 ∧ C1 ∧ C2` holds ([`predicate`]), then candidate boxes balanced), and
+//! construction ([`rounds`] over the leaves' [`quadtree`], which gives each leaf its
+//! side segments; [`construct`]: via nodes on them, the Voronoi vertex test, arcs).
+//! The stitching of arcs into edges is the generic engine's ([`super::assemble`]);
+//! [`output`] names the generators per mode and clips to the domain.
 
 pub mod construct;
 pub mod output;
 pub mod predicate;
+pub mod quadtree;
 pub mod refine;
+pub mod rounds;
 
 use super::budget::{Budget, Limits};
-use super::segments;
 use super::tree::Lattice;
 use super::Output;
 use crate::complex::VoronoiComplex;
@@ -24,7 +25,7 @@ use crate::error::Error;
 use crate::geom::{Aabb, Point};
 use crate::scene::{Mode, Scene};
 use crate::site::polygonal::Polygonal;
-use construct::{Resolved, Resolver, Tol};
+use construct::{Resolver, Tol};
 use refine::{Ctx, Node};
 use serde_json::json;
 use std::time::Instant;
@@ -52,9 +53,6 @@ impl Default for Filters {
         }
     }
 }
-
-/// Rounds of local splitting of unresolved boxes before the cut-off decides.
-const MAX_ROUNDS: usize = 48;
 
 /// The box the subdivision runs over: the domain grown by small, unequal fractions of
 /// its size on each side, so that no box side falls on a line of symmetry of the
@@ -108,11 +106,11 @@ fn run_unit(
         min_box: 0.5 * eps,
         budget: &budget,
     };
-    let mut leaves = ctx.subdivide();
+    let mut tree = ctx.subdivide();
     budget.check(eps)?;
     let t_subdivide = start.elapsed().as_secs_f64();
-    let visited_subdivision = leaves.len();
-    let balance_splits = ctx.balance(&mut leaves);
+    let visited_subdivision = tree.leaf_count();
+    let balance_splits = ctx.balance(&mut tree);
     budget.check(eps)?;
     let t_refine = start.elapsed().as_secs_f64();
     let tol = Tol {
@@ -125,69 +123,18 @@ fn run_unit(
         tol,
         budget: &budget,
     };
-    let mut local_splits = 0;
-    let mut rounds = 0;
-    // Each round resolves only the leaves without an output: the quarters of the
-    // leaves split in the round before and their neighbours (whose sides those splits
-    // cut). Every other leaf has the same sides, neighbours and nodes as when it was
-    // resolved, hence the same output, up to the numbering of the segments.
-    let mut kept: Vec<Option<Resolved>> = vec![None; leaves.len()];
-    let outputs = loop {
-        watch.check()?;
-        let boxes: Vec<_> = leaves.iter().map(|n| n.ib).collect();
-        let segs = segments::build(&boxes, &lattice);
-        let todo: Vec<bool> = kept.iter().map(Option::is_none).collect();
-        let nodes = construct::via_nodes(&poly, &leaves, &segs, &todo, &tol);
-        let last = rounds >= MAX_ROUNDS || budget.exhausted();
-        let mut marked = vec![false; leaves.len()];
-        for (l, n) in leaves.iter().enumerate() {
-            if !todo[l] {
-                continue;
-            }
-            let ports = construct::ports_of(l, &segs, &nodes);
-            let can_split = !last && ctx.can_split(n);
-            match resolver.resolve(n, &ports, can_split) {
-                Ok(output) => {
-                    let members = if output.pieces.is_empty() {
-                        Vec::new()
-                    } else {
-                        segs.members[segs.rows[l]..segs.rows[l + 1]].to_vec()
-                    };
-                    kept[l] = Some(Resolved { output, members });
-                }
-                Err(_) => marked[l] = true,
-            }
-        }
-        if !marked.iter().any(|&m| m) {
-            break kept
-                .into_iter()
-                .enumerate()
-                .map(|(l, r)| {
-                    let r = r.expect("every leaf is resolved");
-                    r.renumbered(&segs.members[segs.rows[l]..segs.rows[l + 1]])
-                })
-                .collect::<Vec<_>>();
-        }
-        for s in &segs.segments {
-            if let [Some(a), Some(b)] = s.leaves {
-                let (a, b) = (a as usize, b as usize);
-                if marked[a] {
-                    kept[b] = None;
-                }
-                if marked[b] {
-                    kept[a] = None;
-                }
-            }
-        }
-        // not balanced again: the construction takes sides of any number of segments
-        local_splits += ctx.split_marked(&mut leaves, &mut kept, &marked);
-        rounds += 1;
-    };
+    let constructed = rounds::construct(&ctx, &resolver, &mut tree, watch)?;
     budget.check(eps)?;
     let t_construct = start.elapsed().as_secs_f64();
 
-    let uncertified: u32 = outputs.iter().map(|o| o.uncertified).sum();
-    let mut complex = super::assemble::assemble(outputs, 1e-12 * poly.scale, 0.125 * eps);
+    let leaves: Vec<&Node> = constructed
+        .order
+        .iter()
+        .map(|&x| tree.leaf(x).expect("the order lists leaves"))
+        .collect();
+    let uncertified: u32 = constructed.outputs.iter().map(|o| o.uncertified).sum();
+    let mut complex =
+        super::assemble::assemble(constructed.outputs, 1e-12 * poly.scale, 0.125 * eps);
     output::name_features(&mut complex, &poly);
     let mut complex = output::clip(complex, &domain);
     if scene.mode() == Mode::Voronoi {
@@ -207,14 +154,14 @@ fn run_unit(
             features: poly.features.len(),
             visited_subdivision,
             balance_splits,
-            local_splits,
+            local_splits: constructed.local_splits,
             uncertified,
-            rounds,
+            rounds: constructed.rounds,
             filters: *filters,
         },
     );
-    let leaves = refine::as_leaves(&leaves);
-    Ok(Output { complex, leaves })
+    let boxes = leaves.iter().map(|n| (n.aabb, n.bs.set.len())).collect();
+    Ok(Output { complex, boxes })
 }
 
 /// The figures of a run.
@@ -234,7 +181,7 @@ struct Stats {
     filters: Filters,
 }
 
-fn add_stats(complex: &mut VoronoiComplex, leaves: &[Node], s: Stats) {
+fn add_stats(complex: &mut VoronoiComplex, leaves: &[&Node], s: Stats) {
     let st = &mut complex.stats;
     st.insert("engine".into(), json!("subdivision"));
     st.insert("algorithm".into(), json!("soft predicates (YSL12)"));

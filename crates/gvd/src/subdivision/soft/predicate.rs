@@ -4,12 +4,19 @@
 use super::Filters;
 use crate::geom::{Aabb, Point};
 use crate::site::polygonal::{Polygonal, Shape};
+use smallvec::SmallVec;
+
+/// A sorted list of features.
+pub type FeatureSet = SmallVec<[u32; 4]>;
+
+/// Parents with at most this many features keep their distances on the stack.
+const STACK_DISTANCES: usize = 32;
 
 /// What one box knows: `φ̃(B)` and `Cl(m_B)`.
 #[derive(Clone, Debug)]
 pub struct BoxSet {
-    /// φ̃(B), sorted.
-    pub set: Vec<u32>,
+    /// φ̃(B), sorted (inline up to four features, as most leaves hold).
+    pub set: FeatureSet,
     /// The clearance of the box's centre (0 in the material).
     pub clearance: f64,
 }
@@ -33,10 +40,16 @@ pub fn radius(b: &Aabb) -> f64 {
 pub fn feature_set(poly: &Polygonal, parent: &[u32], b: &Aabb, filters: &Filters) -> BoxSet {
     let m = b.center();
     let r = radius(b);
-    let dists: Vec<f64> = parent
-        .iter()
-        .map(|&f| poly.features[f as usize].distance(m))
-        .collect();
+    let (mut on_stack, mut on_heap) = ([0.0; STACK_DISTANCES], Vec::new());
+    let dists: &mut [f64] = if parent.len() <= STACK_DISTANCES {
+        &mut on_stack[..parent.len()]
+    } else {
+        on_heap.resize(parent.len(), 0.0);
+        &mut on_heap
+    };
+    for (d, &f) in dists.iter_mut().zip(parent) {
+        *d = poly.features[f as usize].distance(m);
+    }
     let nearest = dists.iter().copied().fold(f64::INFINITY, f64::min);
     let clearance = if nearest.is_finite() && poly.free(m) {
         nearest
@@ -46,7 +59,7 @@ pub fn feature_set(poly: &Polygonal, parent: &[u32], b: &Aabb, filters: &Filters
     let reach = clearance + 2.0 * r;
     let set = parent
         .iter()
-        .zip(&dists)
+        .zip(dists.iter())
         .filter(|(&f, &d)| {
             let feat = &poly.features[f as usize];
             d <= reach

@@ -3,12 +3,12 @@
 //! two or more features) so that none is more than twice the size of a neighbour.
 
 use super::predicate::{self, BoxSet};
+use super::quadtree::Quadtree;
 use super::Filters;
 use crate::geom::Aabb;
 use crate::site::polygonal::Polygonal;
 use crate::subdivision::budget::Budget;
-use crate::subdivision::filter::Certificate;
-use crate::subdivision::tree::{IBox, Lattice, Leaf};
+use crate::subdivision::tree::{IBox, Lattice};
 
 /// A leaf of the soft subdivision.
 #[derive(Clone, Debug)]
@@ -76,62 +76,36 @@ impl Ctx<'_> {
         ])
     }
 
-    /// The subdivision phase from the root box with every feature.
-    pub fn subdivide(&self) -> Vec<Node> {
+    /// The subdivision phase from the root box with every feature: the quadtree of
+    /// its leaves.
+    pub fn subdivide(&self) -> Quadtree {
         let all: Vec<u32> = (0..self.poly.features.len() as u32).collect();
-        let mut stack = vec![self.node(self.lattice.root(), &all)];
-        let mut leaves = Vec::new();
-        while let Some(n) = stack.pop() {
+        let root = self.lattice.root();
+        let mut tree = Quadtree::new(root);
+        let mut stack = vec![(0u32, self.node(root, &all))];
+        while let Some((at, n)) = stack.pop() {
             if !self.budget.take_box() {
                 break;
             }
             if n.bs.set.len() <= 1 || predicate::holds(self.poly, &n.bs, &n.aabb, self.filters) {
-                leaves.push(n);
+                tree.set_leaf(at, n);
                 continue;
             }
             match self.split(&n) {
-                Some(kids) => stack.extend(kids.into_iter().rev()),
-                None => leaves.push(Node {
-                    uncertified: true,
-                    ..n
-                }),
+                Some(kids) => {
+                    let first = tree.add_quarters(at);
+                    stack.extend((first..first + 4).zip(kids).rev());
+                }
+                None => tree.set_leaf(
+                    at,
+                    Node {
+                        uncertified: true,
+                        ..n
+                    },
+                ),
             }
         }
-        leaves
-    }
-
-    /// Replaces the marked leaves by their quarters (taking one box each), with `kept`
-    /// alongside (`None` for the quarters); returns how many were split.
-    pub fn split_marked<T>(
-        &self,
-        leaves: &mut Vec<Node>,
-        kept: &mut Vec<Option<T>>,
-        marked: &[bool],
-    ) -> usize {
-        let mut out = Vec::with_capacity(leaves.len());
-        let mut out_kept = Vec::with_capacity(leaves.len());
-        let mut count = 0;
-        for ((n, k), &m) in leaves.drain(..).zip(kept.drain(..)).zip(marked) {
-            let quarters = if m && self.budget.take_box() {
-                self.split(&n)
-            } else {
-                None
-            };
-            match quarters {
-                Some(q) => {
-                    count += 1;
-                    out.extend(q);
-                    out_kept.extend([None, None, None, None]);
-                }
-                None => {
-                    out.push(n);
-                    out_kept.push(k);
-                }
-            }
-        }
-        *leaves = out;
-        *kept = out_kept;
-        count
+        tree
     }
 
     /// The refinement phase: splits candidate boxes more than twice as large as a
@@ -144,15 +118,13 @@ impl Ctx<'_> {
     /// leaves smaller, so a box once too large stays so until split: the leaves come
     /// out as the repeated global passes of the definition would leave them, in the
     /// same order (the subdivision's depth-first order, quarters in place).
-    pub fn balance(&self, leaves: &mut Vec<Node>) -> usize {
-        let mut tree = Quadtree::new(self.lattice.root(), std::mem::take(leaves));
+    pub fn balance(&self, tree: &mut Quadtree) -> usize {
         let mut work: Vec<u32> = tree.leaf_ids();
         let mut total = 0;
         'work: while let Some(x) = work.pop() {
-            let Some(ib) = tree.leaf(x).map(|n| n.ib) else {
+            let Some((ib, side)) = tree.leaf(x).map(|n| (n.ib, n.aabb.longest_side())) else {
                 continue; // split since it was queued: its quarters are queued
             };
-            let side = tree.nodes[x as usize].aabb_side;
             let [x0, y0] = ib.lo;
             let [x1, y1] = ib.hi;
             let probes = [
@@ -162,7 +134,11 @@ impl Ctx<'_> {
                 Some([x0, y1]),
             ];
             for p in probes.into_iter().flatten() {
-                while let Some(a) = tree.locate(p) {
+                while let Some(a) = tree.locate_from(x, p) {
+                    let extent = tree.extent(a);
+                    if extent[0] <= 2 * (x1 - x0) && extent[1] <= 2 * (y1 - y0) {
+                        break; // at most twice as large (decided without its node)
+                    }
                     let n = tree.leaf(a).expect("located nodes are leaves");
                     let too_large =
                         n.candidate() && n.aabb.longest_side() > 2.0 * side * (1.0 + 1e-9);
@@ -178,148 +154,6 @@ impl Ctx<'_> {
                 }
             }
         }
-        *leaves = tree.into_leaves();
         total
     }
-}
-
-/// The leaves as a quadtree of their boxes, for neighbour look-ups.
-struct Quadtree {
-    nodes: Vec<TreeNode>,
-}
-
-struct TreeNode {
-    ib: IBox,
-    /// The longest side of the box in the plane.
-    aabb_side: f64,
-    /// The first of four consecutive quarters (lower left, lower right, upper left,
-    /// upper right), 0 for a leaf.
-    quarters: u32,
-    /// The leaf's node; `None` for an inner node.
-    leaf: Option<Node>,
-}
-
-impl Quadtree {
-    /// The tree whose leaves are `leaves`, quarters of quarters of `root` listed in
-    /// depth-first order.
-    fn new(root: IBox, leaves: Vec<Node>) -> Self {
-        let mut tree = Quadtree {
-            nodes: vec![TreeNode {
-                ib: root,
-                aabb_side: 0.0,
-                quarters: 0,
-                leaf: None,
-            }],
-        };
-        for n in leaves {
-            let mut at = 0u32;
-            while tree.nodes[at as usize].ib != n.ib {
-                if tree.nodes[at as usize].quarters == 0 {
-                    tree.add_quarters(at);
-                }
-                at = tree.quarter_of(at, n.ib.lo);
-            }
-            let t = &mut tree.nodes[at as usize];
-            t.aabb_side = n.aabb.longest_side();
-            t.leaf = Some(n);
-        }
-        tree
-    }
-
-    /// Appends the four quarters of node `at` (as [`Ctx::split`] cuts), without leaves.
-    fn add_quarters(&mut self, at: u32) {
-        let [x0, y0] = self.nodes[at as usize].ib.lo;
-        let [x1, y1] = self.nodes[at as usize].ib.hi;
-        let (xm, ym) = (x0 + (x1 - x0) / 2, y0 + (y1 - y0) / 2);
-        self.nodes[at as usize].quarters = self.nodes.len() as u32;
-        for (lo, hi) in [
-            ([x0, y0], [xm, ym]),
-            ([xm, y0], [x1, ym]),
-            ([x0, ym], [xm, y1]),
-            ([xm, ym], [x1, y1]),
-        ] {
-            self.nodes.push(TreeNode {
-                ib: IBox { lo, hi },
-                aabb_side: 0.0,
-                quarters: 0,
-                leaf: None,
-            });
-        }
-    }
-
-    /// The quarter of inner node `at` that holds lattice point `p` (half-open boxes).
-    fn quarter_of(&self, at: u32, p: [u64; 2]) -> u32 {
-        let t = &self.nodes[at as usize];
-        let [x0, y0] = t.ib.lo;
-        let [x1, y1] = t.ib.hi;
-        let right = p[0] >= x0 + (x1 - x0) / 2;
-        let upper = p[1] >= y0 + (y1 - y0) / 2;
-        t.quarters + u32::from(right) + 2 * u32::from(upper)
-    }
-
-    /// The leaf holding lattice point `p`, `None` outside the root box.
-    fn locate(&self, p: [u64; 2]) -> Option<u32> {
-        let root = &self.nodes[0].ib;
-        if p[0] >= root.hi[0] || p[1] >= root.hi[1] {
-            return None;
-        }
-        let mut at = 0u32;
-        while self.nodes[at as usize].quarters != 0 {
-            at = self.quarter_of(at, p);
-        }
-        Some(at)
-    }
-
-    fn leaf(&self, at: u32) -> Option<&Node> {
-        self.nodes[at as usize].leaf.as_ref()
-    }
-
-    /// The ids of the leaves.
-    fn leaf_ids(&self) -> Vec<u32> {
-        (0..self.nodes.len() as u32)
-            .filter(|&i| self.nodes[i as usize].leaf.is_some())
-            .collect()
-    }
-
-    /// Replaces leaf `at` by its `quarters`; returns their ids.
-    fn split(&mut self, at: u32, quarters: [Node; 4]) -> std::ops::Range<u32> {
-        self.nodes[at as usize].leaf = None;
-        self.add_quarters(at);
-        let first = self.nodes[at as usize].quarters;
-        for (k, n) in quarters.into_iter().enumerate() {
-            let t = &mut self.nodes[first as usize + k];
-            t.aabb_side = n.aabb.longest_side();
-            t.leaf = Some(n);
-        }
-        first..first + 4
-    }
-
-    /// The leaves in depth-first order, quarters in order.
-    fn into_leaves(mut self) -> Vec<Node> {
-        let mut out = Vec::new();
-        let mut stack = vec![0u32];
-        while let Some(at) = stack.pop() {
-            let t = &mut self.nodes[at as usize];
-            if let Some(n) = t.leaf.take() {
-                out.push(n);
-            } else if t.quarters != 0 {
-                stack.extend((t.quarters..t.quarters + 4).rev());
-            }
-        }
-        out
-    }
-}
-
-/// The nodes as the generic engine's leaves (for its side segments).
-pub fn as_leaves(nodes: &[Node]) -> Vec<Leaf> {
-    nodes
-        .iter()
-        .map(|n| Leaf {
-            ib: n.ib,
-            aabb: n.aabb,
-            sites: n.bs.set.clone(),
-            certificate: Certificate::None,
-            uncertified: n.uncertified,
-        })
-        .collect()
 }

@@ -96,6 +96,8 @@ pub struct Resolver<'a> {
     pub poly: &'a Polygonal,
     pub tol: Tol,
     pub budget: &'a Budget,
+    /// The output names sites, not features (`voronoi` mode).
+    pub by_sites: bool,
 }
 
 impl Resolver<'_> {
@@ -225,6 +227,8 @@ impl Resolver<'_> {
                     points: smallvec![w[0].at, w[1].at],
                 });
             }
+        } else if let Some(pieces) = self.apart_by_sites(b, ports) {
+            out.pieces.extend(pieces);
         } else {
             // every node meets at one vertex of their features
             let vs = self.vertices(set, b);
@@ -246,6 +250,63 @@ impl Resolver<'_> {
         }
         out.uncertified = 1;
         Ok(out)
+    }
+
+    /// At the cut-off in `voronoi` mode, the ports of box `b` grouped by the pair of
+    /// sites they separate, joined two by two, when every group has two ports and no
+    /// two groups' chords cross around the box. Such a box holds curves that pass it
+    /// apart: two curves of a shared site, one through the zone boundaries of a far
+    /// segment's corners and edge, meet at a vertex about an epsilon away, not in the
+    /// box, and one vertex of all the ports would be a false one. Each join is a chord
+    /// of the box, so only boxes whose diagonal is at most `4 · trace` (epsilon) are
+    /// taken (larger ones stop at the round limit, not at the resolution).
+    fn apart_by_sites(&self, b: &Aabb, ports: &[Port]) -> Option<Vec<Piece>> {
+        if !self.by_sites || b.min.dist(b.max) > 4.0 * self.tol.trace {
+            return None;
+        }
+        let site = |f: u32| self.poly.features[f as usize].owners[0].site();
+        let key = |p: &Port| {
+            let (s, t) = (site(p.pair[0]), site(p.pair[1]));
+            (s.min(t), s.max(t))
+        };
+        let mut groups: Vec<((usize, usize), Vec<&Port>)> = Vec::new();
+        for p in ports {
+            match groups.iter_mut().find(|g| g.0 == key(p)) {
+                Some(g) => g.1.push(p),
+                None => groups.push((key(p), vec![p])),
+            }
+        }
+        if groups.len() < 2 || groups.iter().any(|g| g.1.len() != 2 || g.0 .0 == g.0 .1) {
+            return None;
+        }
+        // the ports lie on the box's boundary: their angles about its centre order them
+        let c = b.center();
+        let angle = |p: &Port| (p.at.y - c.y).atan2(p.at.x - c.x);
+        let chords: Vec<(f64, f64)> = groups
+            .iter()
+            .map(|g| {
+                let (x, y) = (angle(g.1[0]), angle(g.1[1]));
+                (x.min(y), x.max(y))
+            })
+            .collect();
+        let within = |t: f64, ch: (f64, f64)| ch.0 < t && t < ch.1;
+        for (i, a) in chords.iter().enumerate() {
+            for d in &chords[i + 1..] {
+                if within(d.0, *a) != within(d.1, *a) {
+                    return None;
+                }
+            }
+        }
+        Some(
+            groups
+                .iter()
+                .map(|g| Piece {
+                    pair: g.1[0].pair,
+                    ends: [End::Port(g.1[0].id), End::Port(g.1[1].id)],
+                    points: smallvec![g.1[0].at, g.1[1].at],
+                })
+                .collect(),
+        )
     }
 
     /// The patterns: Voronoi vertices (Fig. 6(d,e), and the degree-2 vertices where a

@@ -122,6 +122,7 @@ fn run_unit(
         poly: &poly,
         tol,
         budget: &budget,
+        by_sites: scene.mode() == Mode::Voronoi,
     };
     let constructed = rounds::construct(&ctx, &resolver, &mut tree, watch)?;
     budget.check(eps)?;

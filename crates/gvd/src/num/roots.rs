@@ -239,20 +239,30 @@ fn extreme_root(b: &Bernstein1, min_width: f64, from_right: bool) -> Option<f64>
     None
 }
 
+/// The values of `b` at `lo` and `hi` when they change sign; else the answer of the
+/// refinements: an end where `b` is zero, or the end with the smaller `|b|`.
+fn bracket(b: &Bernstein1, lo: f64, hi: f64) -> Result<(f64, f64), f64> {
+    let (flo, fhi) = (b.eval(lo), b.eval(hi));
+    if flo == 0.0 {
+        return Err(lo);
+    }
+    if fhi == 0.0 {
+        return Err(hi);
+    }
+    if (flo > 0.0) == (fhi > 0.0) || flo.is_nan() || fhi.is_nan() {
+        return Err(if flo.abs() <= fhi.abs() { lo } else { hi });
+    }
+    Ok((flo, fhi))
+}
+
 /// Refines a root bracketed by a sign change of `b` on `[lo, hi]` by bisection to full
 /// f64 precision (f64 evaluation, not certified). Without a sign change at the ends,
 /// returns the end with the smaller `|b|`.
 pub fn refine(b: &Bernstein1, mut lo: f64, mut hi: f64) -> f64 {
-    let (mut flo, fhi) = (b.eval(lo), b.eval(hi));
-    if flo == 0.0 {
-        return lo;
-    }
-    if fhi == 0.0 {
-        return hi;
-    }
-    if (flo > 0.0) == (fhi > 0.0) || flo.is_nan() || fhi.is_nan() {
-        return if flo.abs() <= fhi.abs() { lo } else { hi };
-    }
+    let (mut flo, _) = match bracket(b, lo, hi) {
+        Ok(values) => values,
+        Err(end) => return end,
+    };
     loop {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
@@ -283,16 +293,10 @@ pub fn refine(b: &Bernstein1, mut lo: f64, mut hi: f64) -> f64 {
 /// step no longer moves the iterate (within rounding of the root) or the bracket is two
 /// adjacent floats. Not certified; without a sign change at the ends, as [`refine`].
 pub fn refine_by_newton(b: &Bernstein1, mut lo: f64, mut hi: f64) -> f64 {
-    let (flo, fhi) = (b.eval(lo), b.eval(hi));
-    if flo == 0.0 {
-        return lo;
-    }
-    if fhi == 0.0 {
-        return hi;
-    }
-    if (flo > 0.0) == (fhi > 0.0) || flo.is_nan() || fhi.is_nan() {
-        return if flo.abs() <= fhi.abs() { lo } else { hi };
-    }
+    let (_, fhi) = match bracket(b, lo, hi) {
+        Ok(values) => values,
+        Err(end) => return end,
+    };
     let rising = fhi > 0.0;
     let mut x = 0.5 * (lo + hi);
     let (mut step, mut step_before) = (hi - lo, hi - lo);

@@ -334,12 +334,13 @@ impl View<'_> {
         }
         let nf = n as f64;
         let stride = (n + 1) * inner;
-        let (lo, hi, nan) = min_max((0..outer).flat_map(|o| {
-            let line = &self.coef[o * stride..(o + 1) * stride];
-            line.iter()
-                .zip(&line[inner..])
-                .map(move |(&a, &b)| nf * (b - a))
-        }));
+        let (mut lo, mut hi, mut nan) = (f64::INFINITY, f64::NEG_INFINITY, false);
+        for line in self.coef.chunks_exact(stride).take(outer) {
+            let (l, h, x) = min_max(line.iter().zip(&line[inner..]).map(|(&a, &b)| nf * (b - a)));
+            lo = if l < lo { l } else { lo };
+            hi = if h > hi { h } else { hi };
+            nan |= x;
+        }
         let m = max_abs(self.coef);
         let err = round_up(2.0 * nf * self.err + 3.0 * nf * EPS * (m + self.err) + TINY);
         interval_of(lo, hi, nan, err)

@@ -230,6 +230,45 @@ fn casteljau_fixed<const N: usize>(mut c: [f64; N], t: f64) -> f64 {
     c[0]
 }
 
+/// de Casteljau at `t` on consecutive lines of `len` coefficients: `right` (holding the
+/// coefficients) becomes the upper parts, `left` (a copy) the lower ones. Up to 12
+/// coefficients through fixed-size copies the compiler unrolls (the same operations).
+#[inline]
+fn split_lines(left: &mut [f64], right: &mut [f64], len: usize, t: f64) {
+    macro_rules! fixed {
+        ($($n:literal)*) => {
+            match len {
+                $($n => split_lines_fixed::<$n>(left, right, t),)*
+                _ => {
+                    for (l, r) in left.chunks_exact_mut(len).zip(right.chunks_exact_mut(len)) {
+                        for k in 1..len {
+                            for i in 0..len - k {
+                                r[i] += t * (r[i + 1] - r[i]);
+                            }
+                            l[k] = r[0];
+                        }
+                    }
+                }
+            }
+        };
+    }
+    fixed!(2 3 4 5 6 7 8 9 10 11 12)
+}
+
+#[inline]
+fn split_lines_fixed<const N: usize>(left: &mut [f64], right: &mut [f64], t: f64) {
+    for (l, r) in left.chunks_exact_mut(N).zip(right.chunks_exact_mut(N)) {
+        let mut c: [f64; N] = (&*r).try_into().expect("chunk of N");
+        for k in 1..N {
+            for i in 0..N - k {
+                c[i] += t * (c[i + 1] - c[i]);
+            }
+            l[k] = c[0];
+        }
+        r.copy_from_slice(&c);
+    }
+}
+
 impl View<'_> {
     fn range(self) -> Interval {
         range_of(self.coef, self.err)
@@ -262,7 +301,9 @@ impl View<'_> {
         let (outer, n, inner) = layout(self.deg, axis);
         let mut right = self.coef.to_vec();
         let mut left = right.clone();
-        if n > 0 {
+        if n > 0 && inner == 1 {
+            split_lines(&mut left, &mut right, n + 1, t);
+        } else if n > 0 {
             for o in 0..outer {
                 let base = o * (n + 1) * inner;
                 let line = &mut right[base..base + (n + 1) * inner];

@@ -259,11 +259,11 @@ fn split_lines(left: &mut [f64], right: &mut [f64], len: usize, t: f64) {
 fn split_lines_fixed<const N: usize>(left: &mut [f64], right: &mut [f64], t: f64) {
     for (l, r) in left.chunks_exact_mut(N).zip(right.chunks_exact_mut(N)) {
         let mut c: [f64; N] = (&*r).try_into().expect("chunk of N");
-        for k in 1..N {
+        for (k, lower) in l.iter_mut().enumerate().skip(1) {
             for i in 0..N - k {
                 c[i] += t * (c[i + 1] - c[i]);
             }
-            l[k] = c[0];
+            *lower = c[0];
         }
         r.copy_from_slice(&c);
     }

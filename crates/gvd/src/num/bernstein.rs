@@ -308,16 +308,11 @@ impl View<'_> {
                 let base = o * (n + 1) * inner;
                 let line = &mut right[base..base + (n + 1) * inner];
                 for r in 1..=n {
-                    if inner == 1 {
-                        for i in 0..=n - r {
-                            line[i] += t * (line[i + 1] - line[i]);
-                        }
-                    } else {
-                        for i in 0..=n - r {
-                            let (a, b) = line.split_at_mut((i + 1) * inner);
-                            for (x, &y) in a[i * inner..].iter_mut().zip(&b[..inner]) {
-                                *x += t * (y - *x);
-                            }
+                    // rows of `inner` coefficients, combined element by element
+                    for i in 0..=n - r {
+                        let (a, b) = line.split_at_mut((i + 1) * inner);
+                        for (x, &y) in a[i * inner..].iter_mut().zip(&b[..inner]) {
+                            *x += t * (y - *x);
                         }
                     }
                     left[base + r * inner..base + (r + 1) * inner].copy_from_slice(&line[..inner]);

@@ -48,22 +48,31 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
         |q: Point, pts: &[Point]| pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min);
     let mut out: BTreeSet<[Feature; 2]> = BTreeSet::new();
     let mut near: Vec<usize> = Vec::new();
+    // per feature at the current grid point: (distance to its box, sampled distance if
+    // already computed)
+    let mut known: Vec<(f64, Option<f64>)> = Vec::with_capacity(sampled.len());
     for i in 0..GRID {
         for j in 0..GRID {
             let q = Point::new(
                 domain.min.x + (i as f64 + 0.5) * dx,
                 domain.min.y + (j as f64 + 0.5) * dy,
             );
+            known.clear();
             let mut upper = f64::INFINITY;
             for (_, pts, _, b) in &sampled {
-                if b.outside_distance(q) < upper {
-                    upper = upper.min(dist(q, pts));
+                let outside = b.outside_distance(q);
+                let mut sampled_distance = None;
+                if outside < upper {
+                    let d = dist(q, pts);
+                    sampled_distance = Some(d);
+                    upper = upper.min(d);
                 }
+                known.push((outside, sampled_distance));
             }
             near.clear();
-            for (k, (_, pts, slack, b)) in sampled.iter().enumerate() {
-                let bound = upper + 2.0 * rho;
-                if b.outside_distance(q) <= bound && dist(q, pts) - slack <= bound {
+            let bound = upper + 2.0 * rho;
+            for (k, ((_, pts, slack, _), &(outside, d))) in sampled.iter().zip(&known).enumerate() {
+                if outside <= bound && d.unwrap_or_else(|| dist(q, pts)) - slack <= bound {
                     near.push(k);
                 }
             }

@@ -230,6 +230,45 @@ fn casteljau_fixed<const N: usize>(mut c: [f64; N], t: f64) -> f64 {
     c[0]
 }
 
+/// de Casteljau at `t` on consecutive lines of `len` coefficients: `right` (holding the
+/// coefficients) becomes the upper parts, `left` (a copy) the lower ones. Up to 12
+/// coefficients through fixed-size copies the compiler unrolls (the same operations).
+#[inline]
+fn split_lines(left: &mut [f64], right: &mut [f64], len: usize, t: f64) {
+    macro_rules! fixed {
+        ($($n:literal)*) => {
+            match len {
+                $($n => split_lines_fixed::<$n>(left, right, t),)*
+                _ => {
+                    for (l, r) in left.chunks_exact_mut(len).zip(right.chunks_exact_mut(len)) {
+                        for k in 1..len {
+                            for i in 0..len - k {
+                                r[i] += t * (r[i + 1] - r[i]);
+                            }
+                            l[k] = r[0];
+                        }
+                    }
+                }
+            }
+        };
+    }
+    fixed!(2 3 4 5 6 7 8 9 10 11 12)
+}
+
+#[inline]
+fn split_lines_fixed<const N: usize>(left: &mut [f64], right: &mut [f64], t: f64) {
+    for (l, r) in left.chunks_exact_mut(N).zip(right.chunks_exact_mut(N)) {
+        let mut c: [f64; N] = (&*r).try_into().expect("chunk of N");
+        for (k, lower) in l.iter_mut().enumerate().skip(1) {
+            for i in 0..N - k {
+                c[i] += t * (c[i + 1] - c[i]);
+            }
+            *lower = c[0];
+        }
+        r.copy_from_slice(&c);
+    }
+}
+
 impl View<'_> {
     fn range(self) -> Interval {
         range_of(self.coef, self.err)
@@ -262,21 +301,18 @@ impl View<'_> {
         let (outer, n, inner) = layout(self.deg, axis);
         let mut right = self.coef.to_vec();
         let mut left = right.clone();
-        if n > 0 {
+        if n > 0 && inner == 1 {
+            split_lines(&mut left, &mut right, n + 1, t);
+        } else if n > 0 {
             for o in 0..outer {
                 let base = o * (n + 1) * inner;
                 let line = &mut right[base..base + (n + 1) * inner];
                 for r in 1..=n {
-                    if inner == 1 {
-                        for i in 0..=n - r {
-                            line[i] += t * (line[i + 1] - line[i]);
-                        }
-                    } else {
-                        for i in 0..=n - r {
-                            let (a, b) = line.split_at_mut((i + 1) * inner);
-                            for (x, &y) in a[i * inner..].iter_mut().zip(&b[..inner]) {
-                                *x += t * (y - *x);
-                            }
+                    // rows of `inner` coefficients, combined element by element
+                    for i in 0..=n - r {
+                        let (a, b) = line.split_at_mut((i + 1) * inner);
+                        for (x, &y) in a[i * inner..].iter_mut().zip(&b[..inner]) {
+                            *x += t * (y - *x);
                         }
                     }
                     left[base + r * inner..base + (r + 1) * inner].copy_from_slice(&line[..inner]);
@@ -334,12 +370,13 @@ impl View<'_> {
         }
         let nf = n as f64;
         let stride = (n + 1) * inner;
-        let (lo, hi, nan) = min_max((0..outer).flat_map(|o| {
-            let line = &self.coef[o * stride..(o + 1) * stride];
-            line.iter()
-                .zip(&line[inner..])
-                .map(move |(&a, &b)| nf * (b - a))
-        }));
+        let (mut lo, mut hi, mut nan) = (f64::INFINITY, f64::NEG_INFINITY, false);
+        for line in self.coef.chunks_exact(stride).take(outer) {
+            let (l, h, x) = min_max(line.iter().zip(&line[inner..]).map(|(&a, &b)| nf * (b - a)));
+            lo = if l < lo { l } else { lo };
+            hi = if h > hi { h } else { hi };
+            nan |= x;
+        }
         let m = max_abs(self.coef);
         let err = round_up(2.0 * nf * self.err + 3.0 * nf * EPS * (m + self.err) + TINY);
         interval_of(lo, hi, nan, err)

@@ -113,6 +113,11 @@ impl RayCrossings {
         }
     }
 
+    /// The segments indexed.
+    pub(crate) fn segments(&self) -> &[(Point, Point)] {
+        &self.segments
+    }
+
     /// Whether the ray from `q` towards +x crosses the segments an odd number of times.
     pub(crate) fn odd(&self, q: Point) -> bool {
         if self.segments.is_empty() {

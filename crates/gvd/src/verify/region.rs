@@ -23,7 +23,6 @@ use std::f64::consts::TAU;
 /// The even-odd interior of a set of segments and implicit curves.
 #[derive(Clone, Debug)]
 pub(super) struct Region {
-    segs: Vec<(Point, Point)>,
     lo: Point,
     hi: Point,
     crossings: RayCrossings,
@@ -34,8 +33,7 @@ impl Region {
     pub(super) fn new(segs: Vec<(Point, Point)>) -> Self {
         let (lo, hi) = super::field::bounds(&segs);
         Region {
-            crossings: RayCrossings::new(segs.clone()),
-            segs,
+            crossings: RayCrossings::new(segs),
             lo,
             hi,
             curves: Vec::new(),
@@ -44,7 +42,7 @@ impl Region {
 
     /// Whether the region has no boundary at all.
     pub(super) fn is_empty(&self) -> bool {
-        self.segs.is_empty() && self.curves.is_empty()
+        self.crossings.segments().is_empty() && self.curves.is_empty()
     }
 
     /// Even-odd over the segments and over what each curve encloses.
@@ -71,7 +69,8 @@ impl Region {
             .iter()
             .filter_map(|c| c.foot(q))
             .map(|f| q.dist(f));
-        self.segs
+        self.crossings
+            .segments()
             .iter()
             .map(|&(a, b)| segment_distance(q, a, b))
             .chain(curves)

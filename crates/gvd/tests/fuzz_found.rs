@@ -142,6 +142,31 @@ fn verify_takes_either_site_at_a_shared_corner() {
 }
 
 #[test]
+fn verify_measures_segments_sharing_an_end_from_the_end_itself() {
+    // The foot of a point beyond a segment's end `b` was `a + 1·(b − a)`, an ulp off
+    // `b` (here 0.10000000000000009 for 0.1): in the shared end's wedge the two
+    // segments' distances then differed by a constant 1.9e-16 whose gradient is
+    // rounding, and verify's Newton step divided the one by the other: the samples of
+    // the edge along the wedge's side up to 1.6e-4 from the end were reported that far
+    // off the bisector. The two segments at epsilon 1e-5: 21 bad samples, 8.8 epsilon;
+    // the fuzzer's mutant, the triangle of segments at epsilon 1e-15 (checked at the
+    // 4.5e-13 the engine resolves): 13 bad samples, 3.5e8 times that.
+    let pair = scene("fuzz/two-segments-shared-end-eps1e-5");
+    let triangle = scene("scenes/degenerate-triangle-segments");
+    let fine = Scene::new(
+        triangle.domain(),
+        1e-15,
+        triangle.mode(),
+        triangle.sites().to_vec(),
+    );
+    for sc in [pair, fine.unwrap()] {
+        let d = compute(&sc, &Options::default()).unwrap();
+        let report = verify(&sc, &d, &grid64()).unwrap();
+        assert!(report.passed, "{}", report.summary_line());
+    }
+}
+
+#[test]
 fn verify_checks_a_floored_diagram_at_its_resolution() {
     // epsilon 1e-17 is floored to 7.3e-12 by the subdivision, which says so in its
     // stats; checked at 1e-17, 23 of 24 vertices failed

@@ -118,16 +118,21 @@ impl Mul<f64> for Point {
     }
 }
 
-/// The point of the closed segment `[a, b]` nearest to `q`.
+/// The point of the closed segment `[a, b]` nearest to `q`: `a + t·(b − a)` with
+/// `t = (q − a)·(b − a) / |b − a|²` clamped to `[0, 1]`, and the end itself, exactly,
+/// where `t` is clamped (`a + 1·(b − a)` may miss `b` by an ulp: then two segments
+/// sharing that end measured from two points an ulp apart).
 pub fn segment_foot(q: Point, a: Point, b: Point) -> Point {
     let ab = b - a;
     let l2 = ab.dot(ab);
-    let t = if l2 > 0.0 {
-        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
+    let t = if l2 > 0.0 { (q - a).dot(ab) / l2 } else { 0.0 };
+    if t <= 0.0 {
+        a
+    } else if t >= 1.0 {
+        b
     } else {
-        0.0
-    };
-    a.lerp(b, t)
+        a.lerp(b, t)
+    }
 }
 
 /// The distance from `q` to the closed segment `[a, b]`.

@@ -291,17 +291,25 @@ fn reduction(what: &str, ours: &[u64], paper: &[(usize, u64, &str)], without: us
 }
 
 /// The table; `random_only` skips the filter rows, `save_scenes` is where the
-/// random-segment scenes are written.
+/// random-segment scenes are written. Everything runs on a pool of one thread: the
+/// engines' `parallel: false` keeps the distance-field subdivision sequential, but the
+/// incremental engine's and the cells' parallel maps take the global pool (all cores).
 pub fn soft_table(
     repeat: usize,
     random_only: bool,
     save_scenes: Option<&Path>,
 ) -> anyhow::Result<()> {
-    if !random_only {
-        filter_table(repeat);
-        println!();
-    }
-    random_rows(repeat, save_scenes)
+    let one_core = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .context("cannot start the benchmark's thread")?;
+    one_core.install(|| {
+        if !random_only {
+            filter_table(repeat);
+            println!();
+        }
+        random_rows(repeat, save_scenes)
+    })
 }
 
 /// The rows of each scene with each filter setting, and the reductions.

@@ -46,7 +46,12 @@ impl Zone {
                 let t = (q - *a).dot(*u);
                 let dt = (-t).max(t - len).max(0.0);
                 let ds = side.map_or(0.0, |n| (-(q - *a).dot(n)).max(0.0));
-                dt.hypot(ds)
+                // hypot(x, 0) = |x| exactly: most points are off the strip one way only
+                if dt == 0.0 || ds == 0.0 {
+                    dt.max(ds)
+                } else {
+                    dt.hypot(ds)
+                }
             }
             Zone::Cone { c, dirs } => {
                 let g = |d: &Point, p: Point| (p - *c).dot(*d);

@@ -99,9 +99,8 @@ impl Quadtree {
         self.live
     }
 
-    /// Makes node `at` a leaf with node `n` (its box).
+    /// Makes node `at` a leaf with node `n` (of its box).
     pub fn set_leaf(&mut self, at: u32, n: Node) {
-        debug_assert_eq!(self.nodes[at as usize].ib, n.ib);
         self.nodes[at as usize].leaf = self.leaves.len() as u32;
         self.leaves.push(n);
         self.live += 1;
@@ -162,6 +161,11 @@ impl Quadtree {
         Some(at)
     }
 
+    /// Node `at`'s box in lattice coordinates.
+    pub fn ib(&self, at: u32) -> IBox {
+        self.nodes[at as usize].ib
+    }
+
     /// The extent of node `at`'s box in lattice units.
     pub fn extent(&self, at: u32) -> [u64; 2] {
         let ib = &self.nodes[at as usize].ib;
@@ -207,17 +211,110 @@ impl Quadtree {
         first..first + 4
     }
 
+    /// The leaves in depth-first order (quarters in order), each with the node
+    /// across each of its sides (in the order of [`SIDES`]; `None` on the root box's
+    /// boundary) that holds the whole side's length: the neighbour of the same depth,
+    /// or a larger leaf. Passed down from parent to quarters (a quarter's neighbours
+    /// are its siblings or the quarters of its parent's neighbours), so no look-up
+    /// climbs the tree, and the walk visits the tree in the order it was built.
+    pub fn leaves_with_neighbours(&self, mut visit: impl FnMut(u32, [Option<u32>; 4])) {
+        let mut stack = vec![(0u32, [None; 4])];
+        while let Some((at, across)) = stack.pop() {
+            let first = self.nodes[at as usize].quarters;
+            if first == NONE {
+                if self.nodes[at as usize].leaf != NONE {
+                    visit(at, across);
+                }
+                continue;
+            }
+            // the quarter of a same-depth neighbour, or the larger leaf itself
+            let quarter_of = |n: Option<u32>, q: u32| match n {
+                Some(n) if self.nodes[n as usize].quarters != NONE => {
+                    Some(self.nodes[n as usize].quarters + q)
+                }
+                other => other,
+            };
+            for q in (0..4u32).rev() {
+                let (right, upper) = (q & 1, q >> 1);
+                let sibling = |r: u32, u: u32| Some(first + r + 2 * u);
+                let quarter = [
+                    if right == 1 {
+                        sibling(0, upper)
+                    } else {
+                        quarter_of(across[0], 1 + 2 * upper)
+                    },
+                    if right == 0 {
+                        sibling(1, upper)
+                    } else {
+                        quarter_of(across[1], 2 * upper)
+                    },
+                    if upper == 1 {
+                        sibling(right, 0)
+                    } else {
+                        quarter_of(across[2], right + 2)
+                    },
+                    if upper == 0 {
+                        sibling(right, 1)
+                    } else {
+                        quarter_of(across[3], right)
+                    },
+                ];
+                stack.push((first + q, quarter));
+            }
+        }
+    }
+
     /// Appends the segments of leaf `x`'s boundary to `out`, in the order of
-    /// [`SIDES`], each side from its lower end.
+    /// [`SIDES`], each side from its lower end; the leaves across are found by
+    /// climbing from `x` to the first ancestor holding the point just across each side.
     pub fn side_segments(&self, x: u32, lattice: &Lattice, out: &mut Vec<SideSegment>) {
         let ib = self.nodes[x as usize].ib;
-        let root = self.nodes[0].ib;
+        let holds = |at: u32, p: [u64; 2]| {
+            let b = &self.nodes[at as usize].ib;
+            (0..2).all(|k| b.lo[k] <= p[k] && p[k] < b.hi[k])
+        };
+        let starts = SIDES.map(|side| {
+            let across = self.across(&ib, side)?;
+            let mut p = [0u64; 2];
+            p[side.axis] = across;
+            p[1 - side.axis] = ib.lo[1 - side.axis];
+            let mut at = x;
+            while !holds(at, p) {
+                at = self.nodes[at as usize].parent;
+            }
+            Some(at)
+        });
+        self.side_segments_from(x, starts, lattice, out);
+    }
+
+    /// The lattice coordinate just across `side` of box `ib` on the side's axis,
+    /// `None` on the root box's boundary.
+    fn across(&self, ib: &IBox, side: Side) -> Option<u64> {
+        let root = &self.nodes[0].ib;
+        let a = side.axis;
+        if side.high {
+            (ib.hi[a] < root.hi[a]).then_some(ib.hi[a])
+        } else {
+            (ib.lo[a] > root.lo[a]).then(|| ib.lo[a] - 1)
+        }
+    }
+
+    /// [`Self::side_segments`] from `starts`: for each side, a node holding the
+    /// lattice points just across it along its whole length (`None` on the root box's
+    /// boundary), whose leaves on that line are the side's neighbours.
+    pub fn side_segments_from(
+        &self,
+        x: u32,
+        starts: [Option<u32>; 4],
+        lattice: &Lattice,
+        out: &mut Vec<SideSegment>,
+    ) {
+        let ib = self.nodes[x as usize].ib;
         // the box's plane coordinates, each converted once
         let lo_at = [lattice.coord(0, ib.lo[0]), lattice.coord(1, ib.lo[1])];
         let hi_at = [lattice.coord(0, ib.hi[0]), lattice.coord(1, ib.hi[1])];
         for (s, side) in SIDES.iter().enumerate() {
             let (a, along) = (side.axis, 1 - side.axis);
-            let line = if side.high { ib.hi[a] } else { ib.lo[a] };
             let line_at = if side.high { hi_at[a] } else { lo_at[a] };
             let (lo, hi) = (ib.lo[along], ib.hi[along]);
             let at = |t: f64| {
@@ -236,13 +333,7 @@ impl Quadtree {
                     at(lattice.coord(along, t))
                 }
             };
-            // the lattice coordinate just across the side
-            let across = if side.high {
-                (line < root.hi[a]).then_some(line)
-            } else {
-                (line > root.lo[a]).then(|| line - 1)
-            };
-            let Some(across) = across else {
+            let (Some(start), Some(across)) = (starts[s], self.across(&ib, *side)) else {
                 out.push(SideSegment {
                     id: 4 * x + s as u32,
                     from: point(lo),
@@ -253,14 +344,30 @@ impl Quadtree {
             };
             // the side of the neighbour facing this one
             let facing = (s ^ 1) as u32;
-            let mut t = lo;
-            while t < hi {
-                let mut p = [0u64; 2];
-                p[a] = across;
-                p[along] = t;
-                let n = self.locate_from(x, p).expect("a point inside the root box");
-                let nb = &self.nodes[n as usize].ib;
-                let (nlo, nhi) = (nb.lo[along], nb.hi[along]);
+            // the leaves holding the line `across` within [lo, hi), in increasing order
+            let mut stack: smallvec::SmallVec<[u32; 64]> = smallvec::smallvec![start];
+            while let Some(n) = stack.pop() {
+                let t = &self.nodes[n as usize];
+                let (nlo, nhi) = (t.ib.lo[along], t.ib.hi[along]);
+                if t.quarters != NONE {
+                    let column = u32::from(across >= t.ib.lo[a] + (t.ib.hi[a] - t.ib.lo[a]) / 2);
+                    let quarter = |upper: u32| {
+                        t.quarters
+                            + if a == 0 {
+                                column + 2 * upper
+                            } else {
+                                upper + 2 * column
+                            }
+                    };
+                    let mid = nlo + (nhi - nlo) / 2;
+                    if hi > mid {
+                        stack.push(quarter(1));
+                    }
+                    if lo < mid {
+                        stack.push(quarter(0));
+                    }
+                    continue;
+                }
                 if nlo <= lo && hi <= nhi {
                     // one neighbour along the whole side
                     let id = if (nlo, nhi) == (lo, hi) && !side.high {
@@ -282,7 +389,6 @@ impl Quadtree {
                     to: point(nhi),
                     other: Some(n),
                 });
-                t = nhi;
             }
         }
     }

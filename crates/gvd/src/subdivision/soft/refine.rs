@@ -10,11 +10,10 @@ use crate::site::polygonal::Polygonal;
 use crate::subdivision::budget::Budget;
 use crate::subdivision::tree::{IBox, Lattice};
 
-/// A leaf of the soft subdivision.
+/// A leaf of the soft subdivision (its box in lattice coordinates is its tree node's,
+/// [`Quadtree::ib`]).
 #[derive(Clone, Debug)]
 pub struct Node {
-    /// Its box in lattice coordinates.
-    pub ib: IBox,
     /// Its box in the plane.
     pub aabb: Aabb,
     /// φ̃(B) and `Cl(m_B)`.
@@ -45,27 +44,28 @@ impl Ctx<'_> {
         let aabb = self.lattice.aabb(&ib);
         let bs = predicate::feature_set(self.poly, parent, &aabb, self.filters);
         Node {
-            ib,
             aabb,
             bs,
             uncertified: false,
         }
     }
 
-    /// Whether a node may be split (above the cut-off, within the lattice).
-    pub fn can_split(&self, n: &Node) -> bool {
-        let [x0, y0] = n.ib.lo;
-        let [x1, y1] = n.ib.hi;
+    /// Whether node `n` of box `ib` may be split (above the cut-off, within the
+    /// lattice).
+    pub fn can_split(&self, ib: &IBox, n: &Node) -> bool {
+        let [x0, y0] = ib.lo;
+        let [x1, y1] = ib.hi;
         n.aabb.longest_side() > self.min_box && x1 - x0 >= 2 && y1 - y0 >= 2
     }
 
-    /// The four quarters of a node (`None` at the lattice's limit or the cut-off).
-    pub fn split(&self, n: &Node) -> Option<[Node; 4]> {
-        if !self.can_split(n) {
+    /// The four quarters of node `n` of box `ib` (`None` at the lattice's limit or the
+    /// cut-off).
+    pub fn split(&self, ib: &IBox, n: &Node) -> Option<[Node; 4]> {
+        if !self.can_split(ib, n) {
             return None;
         }
-        let [x0, y0] = n.ib.lo;
-        let [x1, y1] = n.ib.hi;
+        let [x0, y0] = ib.lo;
+        let [x1, y1] = ib.hi;
         let (xm, ym) = (x0 + (x1 - x0) / 2, y0 + (y1 - y0) / 2);
         let q = |lo: [u64; 2], hi: [u64; 2]| self.node(IBox { lo, hi }, &n.bs.set);
         Some([
@@ -91,7 +91,7 @@ impl Ctx<'_> {
                 tree.set_leaf(at, n);
                 continue;
             }
-            match self.split(&n) {
+            match self.split(&tree.ib(at), &n) {
                 Some(kids) => {
                     let first = tree.add_quarters(at);
                     stack.extend((first..first + 4).zip(kids).rev());
@@ -122,7 +122,7 @@ impl Ctx<'_> {
         let mut work: Vec<u32> = tree.leaf_ids();
         let mut total = 0;
         'work: while let Some(x) = work.pop() {
-            let Some((ib, side)) = tree.leaf(x).map(|n| (n.ib, n.aabb.longest_side())) else {
+            let Some((ib, side)) = tree.leaf(x).map(|n| (tree.ib(x), n.aabb.longest_side())) else {
                 continue; // split since it was queued: its quarters are queued
             };
             let [x0, y0] = ib.lo;
@@ -142,13 +142,15 @@ impl Ctx<'_> {
                     let n = tree.leaf(a).expect("located nodes are leaves");
                     let too_large =
                         n.candidate() && n.aabb.longest_side() > 2.0 * side * (1.0 + 1e-9);
-                    if !too_large || !self.can_split(n) {
+                    if !too_large || !self.can_split(&tree.ib(a), n) {
                         break;
                     }
                     if !self.budget.take_box() {
                         break 'work;
                     }
-                    let quarters = self.split(n).expect("a splittable node splits");
+                    let quarters = self
+                        .split(&tree.ib(a), n)
+                        .expect("a splittable node splits");
                     work.extend(tree.split(a, quarters));
                     total += 1;
                 }

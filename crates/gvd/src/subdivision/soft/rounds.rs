@@ -17,7 +17,8 @@ use crate::subdivision::resolve::{LeafOutput, Port, PortId};
 /// Rounds of local splitting of unresolved boxes before the cut-off decides.
 const MAX_ROUNDS: usize = 48;
 
-/// What the rounds leave: the leaves in depth-first order and their outputs, the
+/// What the rounds leave: the leaves in depth-first order, in that order the outputs
+/// of those whose output is not empty (most leaves have no node on their sides), the
 /// number of leaves split and the number of rounds after the first.
 pub struct Constructed {
     pub order: Vec<u32>,
@@ -35,6 +36,43 @@ struct NodeCache {
 }
 
 const UNSEEN: u32 = u32::MAX;
+
+/// A tree node's state in [`Outputs::state`]: not resolved (an inner node, or a leaf
+/// to resolve this round), or resolved with an empty output; other values index
+/// [`Outputs::kept`].
+const UNRESOLVED: u32 = u32::MAX;
+const EMPTY: u32 = u32::MAX - 1;
+
+/// The outputs of the resolved leaves: a state per tree node, four bytes, and the
+/// outputs that are not empty apart (a slot per node would be 56 bytes for each of
+/// the million nodes at 10^4 segments, nearly all empty).
+struct Outputs {
+    state: Vec<u32>,
+    kept: Vec<LeafOutput>,
+}
+
+impl Outputs {
+    fn set(&mut self, x: u32, output: LeafOutput) {
+        let empty = output.pieces.is_empty()
+            && output.vertices.is_empty()
+            && output.uncertified == 0
+            && output.local_splits == 0;
+        self.state[x as usize] = if empty {
+            EMPTY
+        } else {
+            self.kept.push(output);
+            (self.kept.len() - 1) as u32
+        };
+    }
+
+    /// Forgets leaf `x`'s output (its memory freed; the slot stays unused).
+    fn reset(&mut self, x: u32) {
+        let k = std::mem::replace(&mut self.state[x as usize], UNRESOLVED);
+        if k < EMPTY {
+            self.kept[k as usize] = LeafOutput::default();
+        }
+    }
+}
 
 impl NodeCache {
     /// The range in `nodes` of segment `s`'s nodes, computed on the first request.
@@ -101,16 +139,74 @@ struct Scratch {
     ports: Vec<Port>,
 }
 
+/// One round's resolution of leaves: their ports from their side segments' via
+/// nodes (each segment's computed once), then the patterns.
+struct Round<'a> {
+    ctx: &'a Ctx<'a>,
+    resolver: &'a Resolver<'a>,
+    cache: &'a mut NodeCache,
+    scratch: &'a mut Scratch,
+    outputs: &'a mut Outputs,
+    /// The leaves whose nodes fit no pattern, to split.
+    marked: Vec<u32>,
+    /// The last round: boxes are not split.
+    last: bool,
+}
+
+impl Round<'_> {
+    /// Resolves leaf `x`, its side segments put in `out` by `sides`.
+    fn leaf(&mut self, tree: &Quadtree, x: u32, sides: impl FnOnce(&mut Vec<SideSegment>)) {
+        let n = tree.leaf(x).expect("rounds resolve leaves");
+        if !n.candidate() {
+            // no pair of features, so no node on any side
+            self.outputs.state[x as usize] = EMPTY;
+            return;
+        }
+        let scratch = &mut *self.scratch;
+        let mut segments = std::mem::take(&mut scratch.sides);
+        segments.clear();
+        sides(&mut segments);
+        let mut ports = std::mem::take(&mut scratch.ports);
+        ports.clear();
+        for s in &segments {
+            let range = self.cache.of(s, &n.bs.set, tree, self.resolver, scratch);
+            for (k, &(at, pair)) in self.cache.nodes[range].iter().enumerate() {
+                ports.push(Port {
+                    id: PortId::Segment {
+                        segment: s.id,
+                        index: k as u32,
+                    },
+                    at,
+                    pair,
+                });
+            }
+        }
+        scratch.sides = segments;
+        let can_split = !self.last && self.ctx.can_split(&tree.ib(x), n);
+        match self.resolver.resolve(n, &ports, can_split) {
+            Ok(output) => self.outputs.set(x, output),
+            Err(_) => self.marked.push(x),
+        }
+        scratch.ports = ports;
+    }
+}
+
 /// Resolves the leaves of `tree`, splitting those whose nodes fit no pattern (not
 /// balanced again: the construction takes sides of any number of segments) until all
-/// are resolved or the cut-off or [`MAX_ROUNDS`] decides.
+/// are resolved or the cut-off or [`MAX_ROUNDS`] decides. The first round walks the
+/// whole tree, each leaf with its neighbours passed down
+/// ([`Quadtree::leaves_with_neighbours`]); later rounds find the few leaves to resolve
+/// again and their neighbours by climbing.
 pub fn construct(
     ctx: &Ctx,
     resolver: &Resolver,
     tree: &mut Quadtree,
     watch: &Watch,
 ) -> Result<Constructed, Error> {
-    let mut kept: Vec<Option<LeafOutput>> = Vec::new();
+    let mut outputs = Outputs {
+        state: Vec::new(),
+        kept: Vec::new(),
+    };
     let mut cache = NodeCache {
         slot: Vec::new(),
         ranges: Vec::new(),
@@ -121,47 +217,36 @@ pub fn construct(
     let mut rounds = 0;
     loop {
         watch.check()?;
-        kept.resize_with(tree.len(), || None);
-        let todo: Vec<u32> = tree
-            .leaf_ids()
-            .into_iter()
-            .filter(|&x| kept[x as usize].is_none())
-            .collect();
-        let last = rounds >= MAX_ROUNDS || ctx.budget.exhausted();
-        let mut marked = Vec::new();
-        for &x in &todo {
-            let n = tree.leaf(x).expect("todo holds leaves");
-            if !n.candidate() {
-                // no pair of features, so no node on any side
-                kept[x as usize] = Some(LeafOutput::default());
-                continue;
+        outputs.state.resize(tree.len(), UNRESOLVED);
+        let mut round = Round {
+            ctx,
+            resolver,
+            cache: &mut cache,
+            scratch: &mut scratch,
+            outputs: &mut outputs,
+            marked: Vec::new(),
+            last: rounds >= MAX_ROUNDS || ctx.budget.exhausted(),
+        };
+        if rounds == 0 {
+            let tree: &Quadtree = tree;
+            tree.leaves_with_neighbours(|x, across| {
+                round.leaf(tree, x, |out| {
+                    tree.side_segments_from(x, across, ctx.lattice, out)
+                })
+            });
+        } else {
+            let todo: Vec<u32> = tree
+                .leaf_ids()
+                .into_iter()
+                .filter(|&x| round.outputs.state[x as usize] == UNRESOLVED)
+                .collect();
+            for x in todo {
+                round.leaf(tree, x, |out| tree.side_segments(x, ctx.lattice, out));
             }
-            scratch.sides.clear();
-            tree.side_segments(x, ctx.lattice, &mut scratch.sides);
-            let mut ports = std::mem::take(&mut scratch.ports);
-            ports.clear();
-            let sides = std::mem::take(&mut scratch.sides);
-            for s in &sides {
-                let range = cache.of(s, &n.bs.set, tree, resolver, &mut scratch);
-                for (k, &(at, pair)) in cache.nodes[range].iter().enumerate() {
-                    ports.push(Port {
-                        id: PortId::Segment {
-                            segment: s.id,
-                            index: k as u32,
-                        },
-                        at,
-                        pair,
-                    });
-                }
-            }
-            scratch.sides = sides;
-            let can_split = !last && ctx.can_split(n);
-            match resolver.resolve(n, &ports, can_split) {
-                Ok(output) => kept[x as usize] = Some(output),
-                Err(_) => marked.push(x),
-            }
-            scratch.ports = ports;
         }
+        // in the order of their ids, as the later rounds list them
+        let mut marked = round.marked;
+        marked.sort_unstable();
         cache.clear();
         if marked.is_empty() {
             break;
@@ -171,7 +256,7 @@ pub fn construct(
             tree.side_segments(x, ctx.lattice, &mut scratch.sides);
             for s in &scratch.sides {
                 if let Some(n) = s.other {
-                    kept[n as usize] = None;
+                    outputs.reset(n);
                 }
             }
         }
@@ -180,7 +265,7 @@ pub fn construct(
                 continue;
             }
             let n = tree.leaf(x).expect("marked leaves are leaves");
-            if let Some(quarters) = ctx.split(n) {
+            if let Some(quarters) = ctx.split(&tree.ib(x), n) {
                 tree.split(x, quarters);
                 local_splits += 1;
             }
@@ -188,9 +273,14 @@ pub fn construct(
         rounds += 1;
     }
     let order = tree.depth_first();
+    let mut kept = std::mem::take(&mut outputs.kept);
     let outputs = order
         .iter()
-        .map(|&x| kept[x as usize].take().expect("every leaf is resolved"))
+        .filter_map(|&x| match outputs.state[x as usize] {
+            UNRESOLVED => panic!("every leaf is resolved"),
+            EMPTY => None,
+            k => Some(std::mem::take(&mut kept[k as usize])),
+        })
         .collect();
     Ok(Constructed {
         order,

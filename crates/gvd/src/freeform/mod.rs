@@ -130,7 +130,8 @@ pub fn compute_with(
                 let (ca, cb) = (&pieces.spans[a].curve, &pieces.spans[b].curve);
                 let f3 = bisector::f3(&forms[a], &forms[b]);
                 let clock = std::time::Instant::now();
-                let found = trace::branches(&f3, &bisector::shared_ends(ca, cb), &mut stats);
+                let units = [ca, cb].map(|c| c.control_box().longest_side());
+                let found = trace::branches(&f3, &bisector::shared_ends(ca, cb), units, &mut stats);
                 trace_seconds += clock.elapsed().as_secs_f64();
                 for br in found {
                     branches += 1;

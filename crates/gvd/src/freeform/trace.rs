@@ -104,8 +104,18 @@ fn subtract(b: &Aabb, e: &Aabb) -> Vec<Aabb> {
 /// the square where the two spans share an end point: `F3` vanishes to second order
 /// there (both `C₀ − C₁` and the tangents' cross product vanish), a singular point the
 /// 2-D solver cannot certify, so the turning points are sought outside a box of side
-/// [`CORNER_BOX`] around it and the corner itself cuts the slabs.
-pub fn branches(f: &Bernstein2, shared: &[Point], stats: &mut TraceStats) -> Vec<Branch> {
+/// [`CORNER_BOX`] around it and the corner itself cuts the slabs. Near such a corner
+/// `F3` and its partials fall below the error bound of `F3`'s form along whole strips
+/// (to fourth order at a smooth joint, and along the whole side of a short span beside
+/// a long one): the solver leaves boxes where both are lost in it unresolved instead of
+/// splitting them to its minimum size, and splits boxes across their longer side in
+/// `units`, the two spans' sizes, so that they stay about square on the curves.
+pub fn branches(
+    f: &Bernstein2,
+    shared: &[Point],
+    units: [f64; 2],
+    stats: &mut TraceStats,
+) -> Vec<Branch> {
     if f.range().excludes_zero() {
         return Vec::new();
     }
@@ -132,19 +142,22 @@ pub fn branches(f: &Bernstein2, shared: &[Point], stats: &mut TraceStats) -> Vec
         special.push(*c);
     }
     // the clusters around a shared corner's box are not worth fine boxes
-    let opts = if shared.is_empty() {
-        SystemOptions {
-            min_size: 1e-7,
-            max_boxes: 1 << 12,
-        }
+    let (min_size, max_boxes) = if shared.is_empty() {
+        (1e-7, 1 << 12)
     } else {
-        SystemOptions {
-            min_size: 1e-5,
-            max_boxes: 1 << 10,
-        }
+        (1e-5, 1 << 10)
     };
     for axis in [0, 1] {
         let g = poly.partial(axis);
+        // F3's form is known to within its error bound, its partial derivatives (in
+        // the square's coordinates, differences of neighbouring coefficients times the
+        // degree) to within 2n times it
+        let opts = SystemOptions {
+            min_size,
+            max_boxes,
+            noise: Some([f.err, 2.0 * f.deg[axis] as f64 * f.err]),
+            units,
+        };
         for d in &domains {
             for root in solve_system(&poly, &g, &[], d, &opts) {
                 if !root.certified {

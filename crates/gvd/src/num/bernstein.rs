@@ -941,6 +941,15 @@ impl Bernstein2 {
         self.view().range()
     }
 
+    /// True when every coefficient is within the error bound plus `slack` of 0. Then so
+    /// is every coefficient of a sub-box's form (de Casteljau splits take convex
+    /// combinations), so neither this range nor a sub-box's excludes 0 by more than
+    /// `slack`.
+    pub fn within_of_zero(&self, slack: f64) -> bool {
+        let bound = self.err + slack;
+        self.coef.iter().all(|c| c.abs() <= bound)
+    }
+
     /// The value at relative `(u, v)` (f64 de Casteljau, not certified).
     pub fn eval(&self, u: f64, v: f64) -> f64 {
         self.view().eval([u, v, 0.0])

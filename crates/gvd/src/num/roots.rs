@@ -341,6 +341,15 @@ pub struct SystemOptions {
     /// Largest number of boxes examined; the boxes left unexplored when it is reached
     /// are reported as uncertified clusters, so every call terminates quickly.
     pub max_boxes: usize,
+    /// How far `f` and `g` themselves may be from the exact system (e.g. the rounding in
+    /// forming them), if known: a box over which both stay within that of 0 cannot be
+    /// decided at this precision and is reported unresolved without being split (no
+    /// sub-box could be excluded by their ranges either).
+    pub noise: Option<[f64; 2]>,
+    /// Units of the two variables: a box is split across the side longest in these
+    /// (e.g. the lengths of two curves each variable parameterizes, so that boxes are
+    /// about square in the plane of the curves).
+    pub units: [f64; 2],
 }
 
 impl SystemOptions {
@@ -349,6 +358,8 @@ impl SystemOptions {
         SystemOptions {
             min_size: 1e-6 * domain.longest_side(),
             max_boxes: 1 << 16,
+            noise: None,
+            units: [1.0, 1.0],
         }
     }
 }
@@ -378,8 +389,9 @@ struct SystemBox {
 /// must also vanish at the solutions sought, used only to exclude boxes: e.g. `f` for
 /// the singular points `f = f_x = f_y = 0`, solved as the square system `f_x = f_y = 0`).
 ///
-/// Subdivision in halves along the longer side. A box is **excluded** when the
-/// Bernstein range of one polynomial over it excludes 0 (convex-hull property; the forms
+/// Subdivision in halves along the longer side (in [`SystemOptions::units`]). A box is
+/// **excluded** when the Bernstein range of one polynomial over it excludes 0
+/// (convex-hull property; the forms
 /// are computed over the domain from `Poly`, and a box's halves get them by de Casteljau
 /// at `1/2` when its midpoint is exact in f64, else from `Poly` again, so they always
 /// stand for the f64 box, with rounding in their error bounds). A box is
@@ -393,7 +405,8 @@ struct SystemBox {
 /// same root). A certified enclosure is then contracted (`X ← K(X) ∩ X`) and dropped
 /// when a side condition excludes 0 over it; otherwise the side conditions are not
 /// decided there (their zero is a measure-zero condition no interval test proves).
-/// Boxes reaching `min_size` unresolved are merged into clusters of touching boxes.
+/// Boxes reaching `min_size` unresolved, or where both polynomials are lost in their
+/// noise ([`SystemOptions::noise`]), are merged into clusters of touching boxes.
 /// No solution is ever lost: a box is dropped only when excluded.
 pub fn solve_system(
     f: &Poly,
@@ -414,12 +427,17 @@ pub fn solve_system(
     let mut unresolved: Vec<Aabb> = Vec::new();
     let mut stack = vec![make(*domain)];
     let mut boxes = 0;
+    let units = if opts.units.iter().all(|u| u.is_finite() && *u > 0.0) {
+        opts.units
+    } else {
+        [1.0, 1.0]
+    };
     while let Some(sb) = stack.pop() {
         boxes += 1;
         if sb.forms.iter().any(|form| form.range().excludes_zero()) {
             continue;
         }
-        if boxes > opts.max_boxes {
+        if boxes > opts.max_boxes || below_noise(&sb.forms, opts.noise) {
             unresolved.push(sb.b);
             continue;
         }
@@ -447,7 +465,7 @@ pub fn solve_system(
             unresolved.push(sb.b);
             continue;
         }
-        let axis = if sb.b.width() >= sb.b.height() {
+        let axis = if sb.b.width() * units[0] >= sb.b.height() * units[1] {
             Axis::X
         } else {
             Axis::Y
@@ -493,6 +511,17 @@ pub fn solve_system(
         });
     }
     out
+}
+
+/// True when `f` and `g` (the first two forms) are both within `noise` (plus their own
+/// rounding) of 0 over the whole box: see [`SystemOptions::noise`].
+fn below_noise(forms: &[Bernstein2], noise: Option<[f64; 2]>) -> bool {
+    noise.is_some_and(|noise| {
+        forms
+            .iter()
+            .zip(noise)
+            .all(|(form, n)| form.within_of_zero(n))
+    })
 }
 
 /// A cheap screen before the Krawczyk test over `X ⊇ b`, from the forms of `f` and `g`
@@ -947,6 +976,50 @@ mod system_tests {
     }
 
     #[test]
+    fn boxes_lost_in_the_noise_are_left_whole() {
+        let domain = Aabb::from_array([-2.0, -2.0, 2.0, 2.0]);
+        let opts = |noise| SystemOptions {
+            noise,
+            ..SystemOptions::for_domain(&domain)
+        };
+        let s = 0.5f64.sqrt();
+        let expected = [Point::new(s, s), Point::new(-s, -s)];
+        let (f, g) = (poly("x^2 + y^2 - 1"), poly("x - y"));
+        // far above the noise: the same certified roots as without it
+        let roots = solve_system(&f, &g, &[], &domain, &opts(Some([1e-9, 1e-9])));
+        assert_certified(&roots, &expected);
+        // scaled below it: the domain, unsplit, as one cluster holding both roots
+        let (tiny_f, tiny_g) = (f.scale(1e-20), g.scale(1e-20));
+        let roots = solve_system(&tiny_f, &tiny_g, &[], &domain, &opts(Some([1e-18, 1e-18])));
+        assert_eq!(roots.len(), 1, "{roots:?}");
+        assert!(
+            !roots[0].certified && roots[0].enclosure == domain,
+            "{roots:?}"
+        );
+        // scaling alone changes nothing, nor does one polynomial alone in the noise
+        let roots = solve_system(&tiny_f, &tiny_g, &[], &domain, &opts(None));
+        assert_certified(&roots, &expected);
+        let roots = solve_system(&tiny_f, &g, &[], &domain, &opts(Some([1e-18, 1e-18])));
+        assert_certified(&roots, &expected);
+    }
+
+    #[test]
+    fn units_change_the_splits_not_the_roots() {
+        let domain = Aabb::from_array([-3.0, -3.0, 3.0, 3.0]);
+        let (f, g) = (poly("x^2/4 + y^2 - 1"), poly("x^2 + y^2/4 - 1"));
+        let t = 2.0 / 5f64.sqrt();
+        let expected = [(t, t), (-t, t), (t, -t), (-t, -t)].map(|(x, y)| Point::new(x, y));
+        // (units of zero fall back to equal ones)
+        for units in [[1.0, 1e-3], [50.0, 1.0], [0.0, 1.0]] {
+            let opts = SystemOptions {
+                units,
+                ..SystemOptions::for_domain(&domain)
+            };
+            assert_certified(&solve_system(&f, &g, &[], &domain, &opts), &expected);
+        }
+    }
+
+    #[test]
     fn tangency_is_an_uncertified_cluster() {
         // the line y = 1 touches the unit circle at (0, 1): a double root
         let roots = solve("x^2 + y^2 - 1", "y - 1", [-2.0, -2.0, 2.0, 2.0]);
@@ -987,6 +1060,8 @@ mod system_tests {
         let opts = SystemOptions {
             min_size: 1e-9,
             max_boxes: 2000,
+            noise: None,
+            units: [1.0, 1.0],
         };
         let roots = solve_system(&f, &f, &[], &domain, &opts);
         assert!(!roots.is_empty() && roots.iter().all(|r| !r.certified));

@@ -128,6 +128,8 @@ pub fn pieces(site: usize, f: &Poly, clip: Aabb, resolution: f64) -> Result<Piec
     let opts = SystemOptions {
         min_size: 1e-9 * clip.longest_side(),
         max_boxes: 1 << 16,
+        noise: None,
+        units: [1.0, 1.0],
     };
     let jet = Jet::new(f);
     let mut cuts = [vec![clip.min.x, clip.max.x], vec![clip.min.y, clip.max.y]];

@@ -38,6 +38,8 @@ pub(super) fn analyse(f: &Poly, jet: &Jet, clip: &Aabb, e: &mut Enclosure) -> Sp
     let opts = SystemOptions {
         min_size: 1e-9 * clip.longest_side(),
         max_boxes: 1 << 15,
+        noise: None,
+        units: [1.0, 1.0],
     };
     let level = |p: Point| 1e3 * f64::EPSILON * jet.f.magnitude(p.x, p.y);
     let mut isolated = Vec::new();

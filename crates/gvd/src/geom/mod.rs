@@ -118,6 +118,29 @@ impl Mul<f64> for Point {
     }
 }
 
+/// The hulls of the connected groups of touching (closed) boxes; quadratic, for the few
+/// boxes a certified search leaves unresolved.
+pub fn clusters(boxes: Vec<Aabb>) -> Vec<Aabb> {
+    let n = boxes.len();
+    let mut sets = crate::disjoint_sets::DisjointSets::new(n);
+    for i in 0..n {
+        for j in i + 1..n {
+            if boxes[i].intersection(&boxes[j]).is_some() {
+                sets.union(i, j);
+            }
+        }
+    }
+    let mut hulls: Vec<(usize, Aabb)> = Vec::new();
+    for (i, b) in boxes.iter().enumerate() {
+        let r = sets.find(i);
+        match hulls.iter_mut().find(|h| h.0 == r) {
+            Some(h) => h.1 = h.1.union(b),
+            None => hulls.push((r, *b)),
+        }
+    }
+    hulls.into_iter().map(|h| h.1).collect()
+}
+
 /// The point of the closed segment `[a, b]` nearest to `q`: `a + t·(b − a)` with
 /// `t = (q − a)·(b − a) / |b − a|²` clamped to `[0, 1]`, and the end itself, exactly,
 /// where `t` is clamped (`a + 1·(b − a)` may miss `b` by an ulp: then two segments
@@ -225,6 +248,17 @@ impl Aabb {
             Point::new(self.max.x.min(o.max.x), self.max.y.min(o.max.y)),
         );
         (b.min.x <= b.max.x && b.min.y <= b.max.y).then_some(b)
+    }
+    /// True when `o` lies in this box (closed).
+    pub fn contains_box(&self, o: &Aabb) -> bool {
+        self.contains(o.min) && self.contains(o.max)
+    }
+    /// The least box holding both.
+    pub fn union(&self, o: &Aabb) -> Aabb {
+        Aabb::new(
+            Point::new(self.min.x.min(o.min.x), self.min.y.min(o.min.y)),
+            Point::new(self.max.x.max(o.max.x), self.max.y.max(o.max.y)),
+        )
     }
     /// The four corners, counter-clockwise from `min`.
     pub fn corners(&self) -> [Point; 4] {

@@ -16,7 +16,6 @@
 //! pieces are reported as uncertified, so every call terminates quickly. No root is ever
 //! missed: a piece is dropped only by the exclusion test.
 
-use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Axis, Point};
 use crate::num::bernstein::{Bernstein1, Bernstein2};
 use crate::num::poly::Poly;
@@ -452,7 +451,7 @@ pub fn solve_system(
                 let excluded = polys[2..]
                     .iter()
                     .any(|p| Bernstein2::from_poly(p, &enclosure).range().excludes_zero());
-                if !excluded && intersect(&enclosure, &sb.b).is_some() {
+                if !excluded && enclosure.intersection(&sb.b).is_some() {
                     let p = newton_refine(system, &jacobian, &enclosure);
                     certified.push((region, enclosure, p));
                 }
@@ -492,7 +491,7 @@ pub fn solve_system(
     let mut out: Vec<SystemRoot> = Vec::new();
     for (k, &(_, enclosure, point)) in certified.iter().enumerate() {
         let duplicate = certified[..k].iter().any(|(region, e, p)| {
-            inside(&enclosure, region) || (e.contains(point) && enclosure.contains(*p))
+            region.contains_box(&enclosure) || (e.contains(point) && enclosure.contains(*p))
         });
         if !duplicate {
             out.push(SystemRoot {
@@ -502,7 +501,7 @@ pub fn solve_system(
             });
         }
     }
-    for cluster in clusters(unresolved) {
+    for cluster in crate::geom::clusters(unresolved) {
         let point = best_point(system, &jacobian, &cluster);
         out.push(SystemRoot {
             enclosure: cluster,
@@ -593,7 +592,7 @@ fn krawczyk(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Krawczyk {
             region: *x,
             enclosure: kb,
         }
-    } else if intersect(&kb, x).is_none() {
+    } else if kb.intersection(x).is_none() {
         Krawczyk::NoRoot
     } else {
         Krawczyk::Unknown
@@ -604,7 +603,7 @@ fn krawczyk(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Krawczyk {
 /// iterated while it at least halves.
 fn contract(system: [&Poly; 2], jacobian: &[Poly; 4], mut x: Aabb) -> Aabb {
     for _ in 0..64 {
-        let Some(k) = krawczyk_image(system, jacobian, &x).and_then(|k| intersect(&k, &x)) else {
+        let Some(k) = krawczyk_image(system, jacobian, &x).and_then(|k| k.intersection(&x)) else {
             break;
         };
         let shrunk = k.longest_side() <= 0.5 * x.longest_side();
@@ -713,46 +712,6 @@ fn inflate(b: &Aabb, frac: f64) -> Aabb {
         Point::new(b.min.x - dx, b.min.y - dy),
         Point::new(b.max.x + dx, b.max.y + dy),
     )
-}
-
-/// The intersection of two closed boxes, if not empty.
-fn intersect(a: &Aabb, b: &Aabb) -> Option<Aabb> {
-    let min = Point::new(a.min.x.max(b.min.x), a.min.y.max(b.min.y));
-    let max = Point::new(a.max.x.min(b.max.x), a.max.y.min(b.max.y));
-    (min.x <= max.x && min.y <= max.y).then_some(Aabb::new(min, max))
-}
-
-/// `a ⊂ b`.
-fn inside(a: &Aabb, b: &Aabb) -> bool {
-    b.contains(a.min) && b.contains(a.max)
-}
-
-/// The hulls of the connected groups of touching (closed) boxes.
-fn clusters(boxes: Vec<Aabb>) -> Vec<Aabb> {
-    let n = boxes.len();
-    let mut sets = DisjointSets::new(n);
-    // boxes are few (the unresolved ones): the quadratic scan is fine
-    for i in 0..n {
-        for j in i + 1..n {
-            if intersect(&boxes[i], &boxes[j]).is_some() {
-                sets.union(i, j);
-            }
-        }
-    }
-    let mut hulls: Vec<(usize, Aabb)> = Vec::new();
-    for (i, b) in boxes.iter().enumerate() {
-        let r = sets.find(i);
-        match hulls.iter_mut().find(|h| h.0 == r) {
-            Some(h) => {
-                h.1 = Aabb::new(
-                    Point::new(h.1.min.x.min(b.min.x), h.1.min.y.min(b.min.y)),
-                    Point::new(h.1.max.x.max(b.max.x), h.1.max.y.max(b.max.y)),
-                )
-            }
-            None => hulls.push((r, *b)),
-        }
-    }
-    hulls.into_iter().map(|h| h.1).collect()
 }
 
 #[cfg(test)]

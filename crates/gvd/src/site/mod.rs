@@ -82,6 +82,16 @@ pub trait DistanceField: Send + Sync {
     /// The field's gradient at `q`.
     fn gradient(&self, q: Point) -> Point;
 
+    /// True when `other` is nowhere nearer than this site over `b` (ties allowed), known
+    /// from what the two sites are rather than from bounds: say a curve `other` lies
+    /// outside the region this curve bounds, and `b` is inside that region. The filter
+    /// then drops `other` where no bound of the difference can, as where the
+    /// difference has a double zero (the common normal of two tangent curves). False
+    /// by default.
+    fn occludes(&self, _s: &Self::State, _other: &Self, _so: &Self::State, _b: &Aabb) -> bool {
+        false
+    }
+
     /// Bounds of `f_self − f_other` (or of a sign-equivalent function) over `b`. The
     /// default subtracts the two field bounds; implementations override it where the
     /// difference is much tighter than that (the difference of two quadrics is linear).
@@ -226,15 +236,25 @@ impl SiteField {
     }
 
     /// The fields of every site of a scene, with explicit choices.
+    /// Algebraic curves learn on which side of each other they lie.
     pub fn for_scene_with(scene: &Scene, options: &FieldOptions) -> Result<Vec<SiteField>, Error> {
-        scene
+        let mut fields = scene
             .sites()
             .iter()
             .enumerate()
             .map(|(i, s)| {
                 SiteField::from_site_at(i, &s.kind, &scene.domain(), scene.epsilon(), options)
             })
-            .collect()
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut curves: Vec<&mut AlgebraicField> = fields
+            .iter_mut()
+            .filter_map(|f| match f {
+                SiteField::Algebraic(a) => Some(a.as_mut()),
+                _ => None,
+            })
+            .collect();
+        AlgebraicField::find_sides(&mut curves);
+        Ok(fields)
     }
 }
 
@@ -382,6 +402,14 @@ macro_rules! delegate_to_families {
                         circle::pair((p.at, 0.0), (q.center, q.radius), b)
                     }
                     _ => bound_difference(self, s, other, so, b),
+                }
+            }
+
+            /// Algebraic curves by the sides they lie on (`algebraic::occlusion`).
+            fn occludes(&self, _s: &FieldState, other: &SiteField, _so: &FieldState, b: &Aabb) -> bool {
+                match (self, other) {
+                    (SiteField::Algebraic(p), SiteField::Algebraic(q)) => p.occludes_over(q, b),
+                    _ => false,
                 }
             }
         }

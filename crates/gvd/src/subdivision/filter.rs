@@ -65,9 +65,16 @@ pub fn lower_envelope<F: DistanceField>(
         let against_best: Vec<Option<PairBound>> = (0..sites.len())
             .map(|a| (a != best).then(|| pair(fields, &sites, a, best, b)))
             .collect();
+        let (ib, sb) = &sites[best];
         let dominated: Vec<bool> = against_best
             .iter()
-            .map(|p| p.as_ref().is_some_and(|p| p.value.lo > 0.0))
+            .zip(&sites)
+            .map(|(p, (ia, sa))| {
+                p.as_ref().is_some_and(|p| {
+                    p.value.lo > 0.0
+                        || fields[*ib as usize].occludes(sb, &fields[*ia as usize], sa, b)
+                })
+            })
             .collect();
         if dominated.iter().filter(|d| !**d).count() == 2 {
             // the two left are `best` and one other, compared above

@@ -215,9 +215,14 @@ pub fn transitions<F: DistanceField>(
         min_len,
         watch,
     };
-    let l0 = label_in(fields, &sites, p0);
-    let l1 = label_in(fields, &sites, p1);
-    scan.rec(0.0, 1.0, l0, l1, b, sites, &mut out);
+    // one site left over the whole segment: no change, and no labels to evaluate
+    let envelope = super::filter::lower_envelope(fields, &b, sites);
+    if envelope.sites.len() <= 1 {
+        return out;
+    }
+    let l0 = label_in(fields, &envelope.sites, p0);
+    let l1 = label_in(fields, &envelope.sites, p1);
+    scan.scan(0.0, 1.0, l0, l1, b, envelope, &mut out);
     out
 }
 
@@ -277,8 +282,23 @@ impl<F: DistanceField> Scan<'_, F> {
         if self.settled(t0, t1, l0, l1) || !self.watch.tick(0) {
             return;
         }
-        let short = (t1 - t0) * self.len <= self.min_len;
         let envelope = super::filter::lower_envelope(self.fields, &b, sites);
+        self.scan(t0, t1, l0, l1, b, envelope, out);
+    }
+
+    /// [`Self::rec`] over the sites that the filter left on the piece.
+    #[allow(clippy::too_many_arguments)]
+    fn scan(
+        &self,
+        t0: f64,
+        t1: f64,
+        l0: u32,
+        l1: u32,
+        b: Aabb,
+        envelope: super::filter::Envelope<F::State>,
+        out: &mut Vec<Transition>,
+    ) {
+        let short = (t1 - t0) * self.len <= self.min_len;
         if envelope.sites.len() <= 1 && l0 == l1 {
             return;
         }

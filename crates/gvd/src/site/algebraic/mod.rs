@@ -20,6 +20,7 @@ mod dense;
 mod enclosure;
 pub mod medial;
 mod nearest;
+mod occlusion;
 mod special;
 
 use super::curve_tree::{meet_normal, unit_bound, CurveField, CurveTree, NONE};
@@ -39,11 +40,15 @@ const MAX_CLUSTER: f64 = 1e-4;
 /// The distance field of an algebraic curve.
 #[derive(Clone, Debug)]
 pub struct AlgebraicField {
+    site: usize,
+    poly: Poly,
     clip: Aabb,
     jet: Jet,
     enclosure: Enclosure,
     special: Special,
     leaf_size: f64,
+    /// The sides on which other curves of the scene lie ([`occlusion`]).
+    sides: Vec<occlusion::Side>,
 }
 
 impl AlgebraicField {
@@ -91,12 +96,50 @@ impl AlgebraicField {
             ));
         }
         Ok(AlgebraicField {
+            site,
+            poly: f.clone(),
             clip,
             jet,
             enclosure,
             special,
             leaf_size,
+            sides: Vec::new(),
         })
+    }
+
+    /// Finds on which side of each curve of `fields` every other one lies
+    /// ([`occlusion`]), for [`Self::occludes_over`].
+    pub fn find_sides(fields: &mut [&mut AlgebraicField]) {
+        let sides: Vec<Vec<occlusion::Side>> = (0..fields.len())
+            .map(|i| {
+                (0..fields.len())
+                    .filter(|&j| j != i)
+                    .filter_map(|j| occlusion::side(fields[i], fields[j]))
+                    .collect()
+            })
+            .collect();
+        for (f, s) in fields.iter_mut().zip(sides) {
+            f.sides = s;
+        }
+    }
+
+    /// True when this curve is at least as near as `other` at every point of `b`, up to
+    /// the contacts of the two curves ([`occlusion`]): `other` lies on the side
+    /// `σ·f ≥ 0` of this curve, and `σ·f < 0` on `b`, inside the clip box.
+    pub fn occludes_over(&self, other: &AlgebraicField, b: &Aabb) -> bool {
+        let Some(side) = self.sides.iter().find(|s| s.site == other.site) else {
+            return false;
+        };
+        let c = b.center();
+        if !self.clip.contains_box(b) || side.sign * self.jet.f.eval(c.x, c.y) >= 0.0 {
+            return false; // (the second test is only a quick refusal)
+        }
+        let range = crate::num::bernstein::Bernstein2::from_poly(&self.poly, b).range();
+        if side.sign > 0.0 {
+            range.hi < 0.0
+        } else {
+            range.lo > 0.0
+        }
     }
 
     /// Figures of the enclosure and the special points, for a diagram's `stats`.
@@ -108,6 +151,14 @@ impl AlgebraicField {
             "singular_points": self.special.singular_points,
             "singular_clusters": self.special.singular_clusters,
             "clip_contacts": self.special.clip_contacts,
+            "occluded_sites": self.sides.iter().map(|s| s.site).collect::<Vec<_>>(),
+            "contacts": self.sides.iter().map(|s| s.contacts.len()).sum::<usize>(),
+            "contact_width": self
+                .sides
+                .iter()
+                .flat_map(|s| &s.contacts)
+                .map(|c| c.longest_side())
+                .fold(0.0, f64::max),
         })
     }
 

@@ -27,8 +27,8 @@ fn json_files(dir: &Path) -> Vec<PathBuf> {
     files
 }
 
-/// The table of `shared/corpus/bad/README.md`: file, site index, field (`None`, `None`
-/// for text that is not JSON).
+/// The table of `shared/corpus/bad/README.md`, then this project's additions: file,
+/// site index, field (`None`, `None` for text that is not JSON).
 const BAD: &[(&str, Option<usize>, Option<&str>)] = &[
     ("invalid-json.json", None, None),
     ("missing-domain.json", None, Some("domain")),
@@ -46,6 +46,9 @@ const BAD: &[(&str, Option<usize>, Option<&str>)] = &[
     ("bspline-bad-knots.json", Some(0), Some("knots")),
     ("unknown-kind.json", Some(1), Some("kind")),
     ("duplicate-points.json", Some(2), Some("at")),
+    // a square inside another, and a copy of a square with one corner moved an ulp in
+    ("polygons-nested.json", Some(1), Some("rings")),
+    ("polygons-corner-moved-ulp.json", Some(1), Some("rings")),
 ];
 
 #[test]
@@ -111,6 +114,14 @@ fn bad_scene_messages() {
         ("missing-domain.json", "field 'domain'"),
         ("inverted-domain.json", "inverted"),
         ("zero-epsilon.json", "epsilon must be > 0"),
+        (
+            "polygons-nested.json",
+            "site 1 field 'rings': its inside overlaps that of polygon site 0: point 0 of ring 0 lies inside polygon site 0",
+        ),
+        (
+            "polygons-corner-moved-ulp.json",
+            "site 1 field 'rings': its inside overlaps that of polygon site 0: edge 0 of ring 0 lies along edge 0 of ring 0 of polygon site 0, both insides on one side",
+        ),
     ] {
         let m = message(file);
         assert!(m.contains(text), "{file}: {m}");

@@ -288,3 +288,39 @@ fn the_scan_of_box_sides_heeds_the_time_limit() {
         assert!(matches!(e, Error::Budget { .. }), "{e}");
     }
 }
+
+#[test]
+fn an_algebraic_curve_whose_distances_f64_cannot_square_is_refused() {
+    // Shou et al.'s line and parabola in the domain [0, 1e-300]², equations unscaled
+    // (equations are not rescaled with a scene): squared distances underflowed to 0, so
+    // no search of the curve's enclosure was pruned, and the run went on for minutes
+    // past a 5 s time limit. Lengths are now refused outside 2^±480, at once.
+    let tiny = scene("fuzz/shou-ex1-domain-1e-300");
+    let at = |side: f64| {
+        let d = gvd::Aabb::new(gvd::Point::new(0.0, 0.0), gvd::Point::new(side, side));
+        Scene::new(d, side / 256.0, tiny.mode(), tiny.sites().to_vec()).unwrap()
+    };
+    for sc in [tiny.clone(), at(1e-150), at(1e200)] {
+        let start = std::time::Instant::now();
+        match compute(&sc, &Options::default()) {
+            Err(Error::Site {
+                site,
+                field,
+                message,
+            }) => {
+                assert_eq!((site, field.as_str()), (0, "equation"), "{message}");
+                assert!(message.contains("2^±480"), "{message}");
+            }
+            other => panic!("{:?}", other.map(|d| d.edges.len())),
+        }
+        assert!(start.elapsed().as_secs_f64() < 1.0, "{:?}", start.elapsed());
+    }
+    // within the range, the same curves are computed
+    for side in [1e-100, 1e-20] {
+        let sc = at(side);
+        let d = compute(&sc, &Options::default()).unwrap();
+        assert!(!d.edges.is_empty(), "{side:e}");
+        let report = verify(&sc, &d, &grid64()).unwrap();
+        assert!(report.passed, "{side:e}: {}", report.summary_line());
+    }
+}

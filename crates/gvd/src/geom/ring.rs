@@ -136,6 +136,44 @@ impl RayCrossings {
     }
 }
 
+/// Where a point lies against a set of segments bounding a region by the even-odd rule.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Location {
+    Inside,
+    OnBoundary,
+    Outside,
+}
+
+impl RayCrossings {
+    /// Where `q` lies, exactly (orientation signs, Sunday01): on a segment, else inside
+    /// when the ray from `q` towards +x crosses an odd number of them (each counted on
+    /// the half-open rule of [`ray_crossing`]).
+    pub(crate) fn locate(&self, q: Point) -> Location {
+        if self.segments.is_empty() {
+            return Location::Outside;
+        }
+        let k = self.slab(q.y);
+        let mut odd = false;
+        for &i in &self.members[self.rows[k] as usize..self.rows[k + 1] as usize] {
+            let (a, b) = self.segments[i as usize];
+            let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
+            let side = orientation(lo, hi, q);
+            let within = a.x.min(b.x) <= q.x && q.x <= a.x.max(b.x) && lo.y <= q.y && q.y <= hi.y;
+            if side == Ordering::Equal && within {
+                return Location::OnBoundary;
+            }
+            if lo.y <= q.y && q.y < hi.y && side == Ordering::Greater {
+                odd = !odd;
+            }
+        }
+        if odd {
+            Location::Inside
+        } else {
+            Location::Outside
+        }
+    }
+}
+
 /// The winding number of the ring around `q` (not on the ring), with exact orientation
 /// signs (Sunday01).
 pub fn winding_number(ring: &[Point], q: Point) -> i64 {

@@ -7,6 +7,7 @@
 
 mod check;
 mod parse;
+mod polygon_overlap;
 mod scale;
 mod unknown;
 mod validate;
@@ -477,7 +478,7 @@ impl SceneBuilder {
         self.sites.is_empty()
     }
     /// The scene, after the checks between sites: no duplicate sites, no overlapping
-    /// circles or ellipses, no number that f64 cannot resolve at the scene's epsilon, no
+    /// circles, ellipses or polygons, no number that f64 cannot resolve at the scene's epsilon, no
     /// two points of one metric too close for it.
     pub fn build(self) -> Result<Scene, Error> {
         if let Some((i, j)) = validate::duplicate_point(&self.sites) {
@@ -490,6 +491,7 @@ impl SceneBuilder {
         validate::check_precision(&self.domain, epsilon, &self.sites)?;
         validate::near_coincident_sites(&self.domain, epsilon, &self.sites, false)?;
         validate::overlapping_ovals(&self.sites)?;
+        polygon_overlap::overlapping_polygons(&self.sites)?;
         Ok(Scene {
             epsilon,
             domain: self.domain,

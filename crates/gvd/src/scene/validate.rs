@@ -18,7 +18,7 @@ fn on_segment(a: Point, b: Point, p: Point) -> bool {
 
 /// How two closed segments meet.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Contact {
+pub(super) enum Contact {
     None,
     /// They cross at a single point interior to both.
     Cross,
@@ -26,7 +26,7 @@ enum Contact {
     Touch,
 }
 
-fn contact(a: Point, b: Point, c: Point, d: Point) -> Contact {
+pub(super) fn contact(a: Point, b: Point, c: Point, d: Point) -> Contact {
     let (o1, o2) = (orient(a, b, c), orient(a, b, d));
     let (o3, o4) = (orient(c, d, a), orient(c, d, b));
     let opposite = |p: Ordering, q: Ordering| p != Ordering::Equal && q == p.reverse();

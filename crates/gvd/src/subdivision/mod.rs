@@ -326,7 +326,7 @@ pub(crate) fn run_watched<F: DistanceField>(
             [Some(a), None] | [None, Some(a)] => leaves[a as usize].sites.clone(),
             [None, None] => Vec::new(),
         };
-        if cands.len() < 2 {
+        if cands.len() < 2 || budget.exhausted() {
             return Vec::new();
         }
         // the states over the side, narrowed from the smaller leaf's where it kept them

@@ -203,7 +203,8 @@ pub fn transitions<F: DistanceField>(
     watch: &Watch,
 ) -> Vec<Transition> {
     let mut out = Vec::new();
-    if sites.len() < 2 {
+    // a stopped run evaluates no field here (each value may search a curve's tree)
+    if sites.len() < 2 || !watch.tick(0) {
         return out;
     }
     let b = segment_box(p0, p1);
@@ -435,5 +436,65 @@ impl<F: DistanceField> Scan<'_, F> {
             at: self.at(0.5 * (t0 + t1)),
             pair: [l0, l1],
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::control::Control;
+    use crate::geom::Axis;
+    use crate::num::Interval;
+    use crate::site::EuclideanPoint;
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
+    use std::sync::Arc;
+
+    /// A point's field that counts its evaluations.
+    struct Counted<'a>(EuclideanPoint, &'a AtomicUsize);
+
+    impl DistanceField for Counted<'_> {
+        type State = ();
+        fn state(&self, _: &Aabb) {}
+        fn split(&self, _: &(), _: &Aabb, _: Axis, _: f64) -> ((), ()) {
+            ((), ())
+        }
+        fn bound(&self, s: &(), b: &Aabb) -> Interval {
+            self.0.bound(s, b)
+        }
+        fn gradient_bound(&self, s: &(), b: &Aabb) -> Option<[Interval; 2]> {
+            self.0.gradient_bound(s, b)
+        }
+        fn value(&self, q: Point) -> f64 {
+            self.1.fetch_add(1, Relaxed);
+            self.0.value(q)
+        }
+        fn gradient(&self, q: Point) -> Point {
+            self.0.gradient(q)
+        }
+    }
+
+    #[test]
+    fn a_stopped_run_evaluates_no_field_on_a_side() {
+        let calls = AtomicUsize::new(0);
+        let fields = [
+            Counted(EuclideanPoint::new(Point::new(-1.0, 0.0)), &calls),
+            Counted(EuclideanPoint::new(Point::new(1.0, 0.0)), &calls),
+        ];
+        let (p0, p1) = (Point::new(-2.0, 0.5), Point::new(2.0, 0.5));
+        let scan = |watch: &Watch| transitions_of(&fields, &[0, 1], p0, p1, 1e-3, watch);
+        let found = scan(&Watch::default());
+        assert_eq!(found.len(), 1);
+        assert!(calls.load(Relaxed) > 0);
+
+        let cancel = Arc::new(AtomicBool::new(true));
+        let watch = Watch::start(&Control {
+            cancel: Some(cancel),
+            ..Default::default()
+        })
+        .unwrap();
+        assert!(watch.check().is_err());
+        calls.store(0, Relaxed);
+        assert!(scan(&watch).is_empty());
+        assert_eq!(calls.load(Relaxed), 0);
     }
 }

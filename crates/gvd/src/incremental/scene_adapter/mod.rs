@@ -706,7 +706,8 @@ impl Snap {
 /// returning how many crossing points, cuts at input points and merged pieces that
 /// took; or, with `strict` and in `medial_axis` mode (where the regions that crossing
 /// sites bound are not defined), refuses the first such contact, naming its sites.
-/// Polygons of different sites that cross are refused too (their insides overlap).
+/// (Polygons whose insides overlap, crossing ones among them, are refused by the
+/// [`Scene`].)
 fn cut_or_refuse(
     g: &mut Generators,
     scene: &Scene,
@@ -729,26 +730,6 @@ fn cut_or_refuse(
     }
     let cut = split_segments(&g.points, &g.segments, &g.lonely, near, 0.25 * near)
         .map_err(|c| conflict_error(g, c, ""))?;
-    let polygon = |seg: u32| {
-        let site = g.segment_owner[seg as usize].0;
-        matches!(scene.sites()[site].kind, SiteKind::Polygon { .. }).then_some(site)
-    };
-    let first_new = g.points.len() as u32;
-    for run in cut.inside.chunk_by(|a, b| a.0 == b.0) {
-        if run[0].0 < first_new {
-            continue; // a touch, not a crossing
-        }
-        let mut sites = run.iter().filter_map(|&(_, seg)| polygon(seg));
-        if let Some(a) = sites.next() {
-            if let Some(b) = sites.find(|&b| b != a) {
-                return Err(Error::Conflict {
-                    site: a.min(b),
-                    other: a.max(b),
-                    message: "polygons cross (their insides overlap)".into(),
-                });
-            }
-        }
-    }
     let counts = [cut.crossings, cut.touches, cut.merged];
     g.apply_split(cut);
     Ok(Some(counts))

@@ -37,6 +37,14 @@ use special::Special;
 /// points: the curve is singular along a branch (`f` has a repeated factor).
 const MAX_CLUSTER: f64 = 1e-4;
 
+/// Lengths the field works with (the leaf size up to the clip box's coordinates) must
+/// lie within `2^±MAX_LENGTH_EXPONENT`: distances are `√(dx² + dy²)`, so their squares
+/// then stay within `2^±960`, among f64's normal numbers (`2^-1022` to `2^1024`) with
+/// room for the products of the foot-point system. Beyond, squared distances underflow
+/// to 0 (every node of the enclosure ties with every other, so no search is pruned) or
+/// overflow. An equation is not rescaled with its scene (`Scene::unit_scale`).
+const MAX_LENGTH_EXPONENT: i32 = 480;
+
 /// The distance field of an algebraic curve.
 #[derive(Clone, Debug)]
 pub struct AlgebraicField {
@@ -58,6 +66,7 @@ impl AlgebraicField {
     pub fn new(site: usize, f: &Poly, clip: Aabb, resolution: f64) -> Result<Self, Error> {
         let jet = Jet::new(f);
         let leaf_size = resolution.max(1e-12 * clip.longest_side());
+        check_length_range(site, &clip, leaf_size)?;
         let Some(mut enclosure) = Enclosure::build(f, &jet, &clip, leaf_size) else {
             return Err(Error::site(
                 site,
@@ -255,6 +264,36 @@ impl CurveTree for AlgebraicField {
     fn gradient_from(&self, b: &Aabb, n: u32) -> [Interval; 2] {
         self.node_gradient(b, &self.enclosure.nodes[n as usize])
     }
+}
+
+/// Refuses a curve whose clip box or leaf size lies outside the lengths f64 can square
+/// ([`MAX_LENGTH_EXPONENT`]).
+fn check_length_range(site: usize, clip: &Aabb, leaf_size: f64) -> Result<(), Error> {
+    let (tiny, huge) = (
+        2f64.powi(-MAX_LENGTH_EXPONENT),
+        2f64.powi(MAX_LENGTH_EXPONENT),
+    );
+    let side = clip.longest_side();
+    let reach = clip.to_array().iter().fold(side, |m, v| m.max(v.abs()));
+    let smallest = leaf_size.min(side);
+    if smallest >= tiny && reach <= huge {
+        return Ok(());
+    }
+    let what = if smallest < tiny {
+        format!("its clip box ({side:e} wide) at resolution {leaf_size:e} is too small")
+    } else {
+        format!("its clip box reaches {reach:e}, too far")
+    };
+    Err(Error::site(
+        site,
+        "equation",
+        format!(
+            "{what}: distances to the curve square lengths, and lengths outside \
+             2^±{MAX_LENGTH_EXPONENT} ({tiny:.1e} to {huge:.1e}) square beyond f64's normal \
+             numbers; equations are not rescaled with the scene, so give the domain (or the \
+             'clip' box), epsilon and the equation at a scale nearer 1"
+        ),
+    ))
 }
 
 /// True when no point of the curve `{f = 0} ∩ clip` in a node (box `n`, gradient

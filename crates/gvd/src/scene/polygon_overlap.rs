@@ -1,0 +1,381 @@
+//! Polygon sites whose insides overlap (SCENE_FORMAT.md: the sites of a scene are
+//! disjoint; polygons may share corners and edges, their insides on either side).
+//!
+//! Two closed polygonal regions `A`, `B` overlap when a point of `A`'s boundary lies
+//! strictly inside `B` (a boundary point is a limit of inside points, and an inside
+//! neighbourhood of it then meets `A`'s inside), when their boundaries cross, or when
+//! they run along one another with both insides on the same side. The witnesses tried,
+//! all with exact orientation signs (Shewchuk97), so touching polygons are never refused:
+//!
+//! * pairs of edges of different polygons that cross at a point inside both, or lie on
+//!   one line over a common piece and point the same way (every ring oriented with its
+//!   region on the left: outer rings counter-clockwise, holes clockwise), tried within
+//!   the cells of a grid of the edges;
+//! * every corner of each polygon, and every edge's midpoint where it rounds onto the
+//!   edge, located in the other polygons whose boxes hold it, each through a slab index
+//!   of its edges ([`RayCrossings`]).
+//!
+//! Nested polygons, crossing ones, copies with a corner moved (even by an ulp) and
+//! copies are found. An overlap only the middle of an edge piece between two touches
+//! would show (a polygon inscribed in another, corners on its sides, whose midpoints do
+//! not round onto the edges) may pass.
+
+use super::validate::{contact, Contact};
+use super::{Site, SiteKind};
+use crate::error::Error;
+use crate::geom::grid::{bounds_of_points, BucketGrid};
+use crate::geom::predicates::orientation as orient;
+use crate::geom::ring::{Location, RayCrossings};
+use crate::geom::{Aabb, Point};
+use std::cmp::Ordering;
+
+/// An edge of a polygon site, `a → b` with the region on its left, and where it was
+/// given: edge `index` of ring `ring` (from point `index` to the next).
+#[derive(Clone, Copy)]
+struct Edge {
+    polygon: u32,
+    ring: u32,
+    index: u32,
+    a: Point,
+    b: Point,
+}
+
+/// What shows two polygons' insides overlap.
+enum Witness {
+    /// Edge `e` of one crosses edge `f` of the other.
+    Cross(Edge, Edge),
+    /// Edges `e` and `f` run along one line the same way over a common piece.
+    Along(Edge, Edge),
+    /// Point `index` of ring `ring` of polygon `polygon` (a corner, or the middle of
+    /// the edge from there) lies strictly inside polygon `inside`.
+    Inside {
+        polygon: u32,
+        ring: u32,
+        index: u32,
+        middle: bool,
+        inside: u32,
+    },
+}
+
+/// Refuses two polygon sites whose insides overlap, naming the later site (its
+/// `rings`) and the earlier one; of several such pairs, the one with the smallest
+/// indices.
+pub(crate) fn overlapping_polygons(sites: &[Site]) -> Result<(), Error> {
+    let polygons: Vec<(usize, &[Vec<Point>])> = sites
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| match &s.kind {
+            SiteKind::Polygon { rings } => Some((i, rings.as_slice())),
+            _ => None,
+        })
+        .collect();
+    if polygons.len() < 2 {
+        return Ok(());
+    }
+    let edges = oriented_edges(&polygons);
+    let mut first: Option<((usize, usize), Witness)> = None;
+    let mut note = |w: Witness| {
+        let (p, q) = match &w {
+            Witness::Cross(e, f) | Witness::Along(e, f) => (e.polygon, f.polygon),
+            Witness::Inside {
+                polygon, inside, ..
+            } => (*polygon, *inside),
+        };
+        let (i, j) = (polygons[p as usize].0, polygons[q as usize].0);
+        let pair = (i.max(j), i.min(j));
+        if first.as_ref().is_none_or(|(f, _)| pair < *f) {
+            first = Some((pair, w));
+        }
+    };
+    edge_contacts(&edges, &mut note);
+    points_inside(&polygons, &edges, &mut note);
+    let Some(((later, earlier), w)) = first else {
+        return Ok(());
+    };
+    let site = |p: u32| polygons[p as usize].0;
+    let how = match w {
+        Witness::Cross(e, f) | Witness::Along(e, f) => {
+            let (mine, theirs) = if site(e.polygon) == later {
+                (e, f)
+            } else {
+                (f, e)
+            };
+            let (verb, tail) = if matches!(w, Witness::Cross(..)) {
+                ("crosses", "")
+            } else {
+                ("lies along", ", both insides on one side")
+            };
+            format!(
+                "edge {} of ring {} {verb} edge {} of ring {} of polygon site {earlier}{tail}",
+                mine.index, mine.ring, theirs.index, theirs.ring
+            )
+        }
+        Witness::Inside {
+            polygon,
+            ring,
+            index,
+            middle,
+            ..
+        } => {
+            let what = if middle {
+                format!("the middle of edge {index} of ring {ring}")
+            } else {
+                format!("point {index} of ring {ring}")
+            };
+            if site(polygon) == later {
+                format!("{what} lies inside polygon site {earlier}")
+            } else {
+                format!("{what} of polygon site {earlier} lies inside it")
+            }
+        }
+    };
+    Err(Error::site(
+        later,
+        "rings",
+        format!(
+            "its inside overlaps that of polygon site {earlier}: {how} (polygons may share \
+             corners and edges, not insides)"
+        ),
+    ))
+}
+
+/// The edges of every ring, oriented with the polygon's region on their left.
+fn oriented_edges(polygons: &[(usize, &[Vec<Point>])]) -> Vec<Edge> {
+    let mut edges = Vec::new();
+    for (p, (_, rings)) in polygons.iter().enumerate() {
+        for (r, ring) in rings.iter().enumerate() {
+            let forward = counter_clockwise(ring) == (r == 0);
+            let n = ring.len();
+            for k in 0..n {
+                let (a, b) = (ring[k], ring[(k + 1) % n]);
+                let (a, b) = if forward { (a, b) } else { (b, a) };
+                edges.push(Edge {
+                    polygon: p as u32,
+                    ring: r as u32,
+                    index: k as u32,
+                    a,
+                    b,
+                });
+            }
+        }
+    }
+    edges
+}
+
+/// Whether a simple ring runs counter-clockwise: its turn at its least point (by x,
+/// then y), a corner of its convex hull where it cannot run straight (a ring that
+/// turns back there is refused before).
+fn counter_clockwise(ring: &[Point]) -> bool {
+    let n = ring.len();
+    let k = (0..n)
+        .min_by(|&i, &j| (ring[i].x.total_cmp(&ring[j].x)).then(ring[i].y.total_cmp(&ring[j].y)))
+        .unwrap_or(0);
+    orient(ring[(k + n - 1) % n], ring[k], ring[(k + 1) % n]) == Ordering::Greater
+}
+
+/// Edges of different polygons that cross, or run along one line the same way over a
+/// common piece.
+fn edge_contacts(edges: &[Edge], note: &mut impl FnMut(Witness)) {
+    let extent = bounds_of_points(edges.iter().map(|e| e.a));
+    let total: f64 = edges.iter().map(|e| e.a.dist(e.b)).sum();
+    let side = BucketGrid::segment_cell_side(&extent, edges.len(), total);
+    let grid = BucketGrid::of_segments(
+        extent,
+        side,
+        4096,
+        edges.len(),
+        |k| [edges[k].a, edges[k].b],
+        0.0,
+    );
+    for bucket in grid.buckets() {
+        for (x, &i) in bucket.iter().enumerate() {
+            let e = edges[i as usize];
+            for &j in &bucket[x + 1..] {
+                let f = edges[j as usize];
+                if e.polygon == f.polygon {
+                    continue;
+                }
+                match contact(e.a, e.b, f.a, f.b) {
+                    Contact::Cross => note(Witness::Cross(e, f)),
+                    Contact::Touch if same_way_along(&e, &f) => note(Witness::Along(e, f)),
+                    _ => {}
+                }
+            }
+        }
+    }
+}
+
+/// Whether `e` and `f` lie on one line, share a piece longer than a point, and point
+/// the same way (exact: orientation signs and comparisons of coordinates).
+fn same_way_along(e: &Edge, f: &Edge) -> bool {
+    if orient(e.a, e.b, f.a) != Ordering::Equal || orient(e.a, e.b, f.b) != Ordering::Equal {
+        return false;
+    }
+    // along x unless the line is vertical (then along y)
+    let coord = |p: Point| if e.a.x != e.b.x { p.x } else { p.y };
+    let (e0, e1, f0, f1) = (coord(e.a), coord(e.b), coord(f.a), coord(f.b));
+    let common = e0.min(e1).max(f0.min(f1)) < e0.max(e1).min(f0.max(f1));
+    common && (e0 < e1) == (f0 < f1)
+}
+
+/// Corners and edge midpoints of each polygon that lie strictly inside another.
+fn points_inside(
+    polygons: &[(usize, &[Vec<Point>])],
+    edges: &[Edge],
+    note: &mut impl FnMut(Witness),
+) {
+    let boxes: Vec<Aabb> = polygons
+        .iter()
+        .map(|(_, rings)| bounds_of_points(rings[0].iter().copied()))
+        .collect();
+    let extent = bounds_of_points(boxes.iter().flat_map(|b| [b.min, b.max]));
+    let side = extent.longest_side() / (polygons.len() as f64).sqrt();
+    let grid = BucketGrid::new(extent, side, 4096, boxes.len(), |k| boxes[k]);
+    let mut indices: Vec<RayCrossings> = Vec::with_capacity(polygons.len());
+    let mut start = 0;
+    for p in 0..polygons.len() {
+        let end = start + edges[start..].partition_point(|e| e.polygon == p as u32);
+        indices.push(RayCrossings::new(
+            edges[start..end].iter().map(|e| (e.a, e.b)).collect(),
+        ));
+        start = end;
+    }
+    let mut locate = |q: Point, polygon: u32, ring: u32, index: u32, middle: bool| {
+        for &other in grid.bucket(grid.cell_of(q)) {
+            if other != polygon
+                && boxes[other as usize].contains(q)
+                && indices[other as usize].locate(q) == Location::Inside
+            {
+                note(Witness::Inside {
+                    polygon,
+                    ring,
+                    index,
+                    middle,
+                    inside: other,
+                });
+            }
+        }
+    };
+    for (p, (_, rings)) in polygons.iter().enumerate() {
+        for (r, ring) in rings.iter().enumerate() {
+            let n = ring.len();
+            for (k, &a) in ring.iter().enumerate() {
+                locate(a, p as u32, r as u32, k as u32, false);
+                let b = ring[(k + 1) % n];
+                let middle = a.lerp(b, 0.5);
+                if orient(a, b, middle) == Ordering::Equal {
+                    locate(middle, p as u32, r as u32, k as u32, true);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn polygon(rings: &[&[[f64; 2]]]) -> Site {
+        Site::new(SiteKind::Polygon {
+            rings: rings
+                .iter()
+                .map(|r| r.iter().map(|&[x, y]| Point::new(x, y)).collect())
+                .collect(),
+        })
+    }
+
+    const SQUARE: &[[f64; 2]] = &[[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+    const BIG: &[[f64; 2]] = &[[-2.0, -2.0], [2.0, -2.0], [2.0, 2.0], [-2.0, 2.0]];
+
+    /// The refusal's message, `None` when the two polygons are accepted.
+    fn refusal(a: &[&[[f64; 2]]], b: &[&[[f64; 2]]]) -> Option<String> {
+        let sites = [polygon(a), polygon(b)];
+        overlapping_polygons(&sites).err().map(|e| {
+            assert_eq!((e.site_index(), e.field()), (Some(1), Some("rings")), "{e}");
+            e.to_string()
+        })
+    }
+
+    #[test]
+    fn overlapping_insides_are_refused() {
+        let below = 1.0f64.next_down();
+        let above = 1.0f64.next_up();
+        let small: &[[f64; 2]] = &[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]];
+        for (name, other, says) in [
+            ("nested", small, "point 0 of ring 0 lies inside"),
+            (
+                "corner an ulp in",
+                &[[-1.0, -1.0], [1.0, -1.0], [below, below], [-1.0, 1.0]][..],
+                "lies along edge 0",
+            ),
+            (
+                "clockwise copy, corner an ulp out",
+                &[[-1.0, -1.0], [-1.0, 1.0], [above, above], [1.0, -1.0]],
+                "both insides on one side",
+            ),
+            (
+                "a half",
+                &[[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0]],
+                "lies along",
+            ),
+            (
+                "inscribed, corners on the sides",
+                &[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]],
+                "the middle of edge 0 of ring 0 lies inside",
+            ),
+            (
+                "crossing",
+                &[[-0.5, -2.0], [0.5, -2.0], [0.5, 2.0], [-0.5, 2.0]],
+                "crosses",
+            ),
+            ("around", BIG, "of polygon site 0 lies inside it"),
+        ] {
+            let m = refusal(&[SQUARE], &[other]).unwrap_or_else(|| panic!("{name}: accepted"));
+            assert!(m.contains(says), "{name}: {m}");
+        }
+        // an island as large as the hole it sits in, but turned: it overlaps the ring
+        let turned: &[[f64; 2]] = &[[0.0, -1.5], [1.5, 0.0], [0.0, 1.5], [-1.5, 0.0]];
+        assert!(refusal(&[BIG, SQUARE], &[turned]).is_some());
+    }
+
+    #[test]
+    fn touching_polygons_and_islands_in_holes_are_accepted() {
+        let reversed: Vec<[f64; 2]> = SQUARE.iter().rev().copied().collect();
+        for (name, a, b) in [
+            (
+                "sharing an edge",
+                &[SQUARE][..],
+                &[&[[1.0, -1.0], [2.0, -1.0], [2.0, 1.0], [1.0, 1.0]][..]][..],
+            ),
+            (
+                "sharing part of an edge",
+                &[SQUARE],
+                &[&[[1.0, 0.0], [2.0, 0.0], [2.0, 2.0], [1.0, 2.0]][..]],
+            ),
+            (
+                "sharing a corner",
+                &[SQUARE],
+                &[&[[1.0, 1.0], [2.0, 1.0], [2.0, 2.0]][..]],
+            ),
+            (
+                "a corner on a side",
+                &[SQUARE],
+                &[&[[1.0, 0.0], [2.0, -1.0], [2.0, 1.0]][..]],
+            ),
+            (
+                "an island in a hole",
+                &[BIG, SQUARE],
+                &[&[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]][..]],
+            ),
+            ("an island filling its hole", &[BIG, SQUARE], &[SQUARE]),
+            ("the same, clockwise", &[BIG, SQUARE], &[&reversed[..]]),
+            (
+                "apart",
+                &[SQUARE],
+                &[&[[3.0, 3.0], [4.0, 3.0], [4.0, 4.0]][..]],
+            ),
+        ] {
+            assert_eq!(refusal(a, b), None, "{name}");
+        }
+    }
+}

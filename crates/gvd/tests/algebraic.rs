@@ -345,11 +345,12 @@ fn paper_example_2_astroid_and_circle() {
     }
 }
 
-#[test]
-fn paper_example_3_agrees_with_circle_sites_outside_the_discs() {
-    let d = check("shou-ex3-three-circles");
-    let curves = scene("shou-ex3-three-circles");
-    let centres = [(1.0, 0.0), (-1.0, 0.0), (0.0, -1.7320508075688772)];
+/// The diagram of unit circles written as algebraic curves against the same circles as
+/// `circle` sites: outside the discs, the same vertices within epsilon with the same
+/// sites.
+fn agrees_with_circle_sites_outside_the_discs(name: &str, centres: &[(f64, f64)]) {
+    let d = check(name);
+    let curves = scene(name);
     let as_circles = Scene::new(
         curves.domain(),
         curves.epsilon(),
@@ -364,7 +365,8 @@ fn paper_example_3_agrees_with_circle_sites_outside_the_discs() {
     let outside = |p: Point| centres.iter().all(|c| p.dist(Point::new(c.0, c.1)) > 1.0);
     let vs: Vec<_> = d.vertices.iter().filter(|v| outside(v.at)).collect();
     let ws: Vec<_> = e.vertices.iter().filter(|v| outside(v.at)).collect();
-    assert_eq!(vs.len(), ws.len());
+    assert_eq!(vs.len(), ws.len(), "{vs:?} vs {ws:?}");
+    assert!(!vs.is_empty());
     for v in vs {
         let w = ws
             .iter()
@@ -376,6 +378,22 @@ fn paper_example_3_agrees_with_circle_sites_outside_the_discs() {
         b.sort();
         assert_eq!(a, b);
     }
+}
+
+#[test]
+fn paper_example_3_agrees_with_circle_sites_outside_the_discs() {
+    agrees_with_circle_sites_outside_the_discs(
+        "shou-ex3-three-circles",
+        &[(1.0, 0.0), (-1.0, 0.0), (0.0, -1.7320508075688772)],
+    );
+}
+
+#[test]
+fn paper_example_4_agrees_with_circle_sites_outside_the_discs() {
+    agrees_with_circle_sites_outside_the_discs(
+        "shou-ex4-four-circles",
+        &[(-1.0, 1.0), (1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)],
+    );
 }
 
 /// At epsilon 1/1024 the edge from the three circles' vertex to a corner of the domain

@@ -119,11 +119,12 @@ impl AlgebraicField {
     /// Finds on which side of each curve of `fields` every other one lies
     /// ([`occlusion`]), for [`Self::occludes_over`].
     pub fn find_sides(fields: &mut [&mut AlgebraicField]) {
+        let mut spent = 0;
         let sides: Vec<Vec<occlusion::Side>> = (0..fields.len())
             .map(|i| {
                 (0..fields.len())
                     .filter(|&j| j != i)
-                    .filter_map(|j| occlusion::side(fields[i], fields[j]))
+                    .filter_map(|j| occlusion::side(fields[i], fields[j], &mut spent))
                     .collect()
             })
             .collect();

@@ -37,12 +37,14 @@ const CONTACT_SIZE: f64 = 1e-8;
 /// Most contact boxes per pair: more means the curves run together over a stretch
 /// (they overlap or cross), and the pair is left to the distance bounds.
 const MAX_CONTACTS: usize = 64;
-/// Most boxes searched per pair (bounded work).
+/// Most boxes searched per pair, and over all pairs of a scene (bounded work; pairs
+/// left unsearched get no side, and their boxes are decided by the bounds alone).
 const MAX_BOXES: usize = 1 << 16;
+pub(super) const MAX_SCENE_BOXES: usize = 1 << 21;
 
 /// The side of curve `b` with respect to curve `a` (`None`: `b` leaves `a`'s clip box,
-/// crosses `a`, or the search ran out of work).
-pub(super) fn side(a: &AlgebraicField, b: &AlgebraicField) -> Option<Side> {
+/// crosses `a`, or the search ran out of work); `spent` counts the boxes searched.
+pub(super) fn side(a: &AlgebraicField, b: &AlgebraicField, spent: &mut usize) -> Option<Side> {
     if !a.clip.contains_box(&b.clip) {
         return None;
     }
@@ -68,7 +70,8 @@ pub(super) fn side(a: &AlgebraicField, b: &AlgebraicField) -> Option<Side> {
     let mut boxes = 0;
     while let Some((k, node)) = work.pop() {
         boxes += 1;
-        if boxes > MAX_BOXES {
+        *spent += 1;
+        if boxes > MAX_BOXES || *spent > MAX_SCENE_BOXES {
             return None;
         }
         let fb = Bernstein2::from_poly(&b.poly, &k);

@@ -55,7 +55,7 @@ pub struct AlgebraicField {
     enclosure: Enclosure,
     special: Special,
     leaf_size: f64,
-    /// The sides on which other curves of the scene lie ([`occlusion`]).
+    /// The sides on which other curves of the scene lie (`algebraic::occlusion`).
     sides: Vec<occlusion::Side>,
 }
 
@@ -117,7 +117,7 @@ impl AlgebraicField {
     }
 
     /// Finds on which side of each curve of `fields` every other one lies
-    /// ([`occlusion`]), for [`Self::occludes_over`].
+    /// (`algebraic::occlusion`), for [`Self::occludes_over`].
     pub fn find_sides(fields: &mut [&mut AlgebraicField]) {
         let mut spent = 0;
         let sides: Vec<Vec<occlusion::Side>> = (0..fields.len())
@@ -134,7 +134,7 @@ impl AlgebraicField {
     }
 
     /// True when this curve is at least as near as `other` at every point of `b`, up to
-    /// the contacts of the two curves ([`occlusion`]): `other` lies on the side
+    /// the contacts of the two curves (`algebraic::occlusion`): `other` lies on the side
     /// `σ·f ≥ 0` of this curve, and `σ·f < 0` on `b`, inside the clip box.
     pub fn occludes_over(&self, other: &AlgebraicField, b: &Aabb) -> bool {
         let Some(side) = self.sides.iter().find(|s| s.site == other.site) else {

@@ -14,7 +14,7 @@ use crate::geom::{Aabb, Point};
 use crate::site::polygonal::{Polygonal, Shape};
 use crate::subdivision::budget::Budget;
 use crate::subdivision::resolve::{End, FoundVertex, LeafOutput, Piece, Port};
-use smallvec::smallvec;
+use smallvec::{smallvec, SmallVec};
 
 /// Tolerances of the construction.
 #[derive(Clone, Copy, Debug)]
@@ -189,17 +189,19 @@ impl Resolver<'_> {
             && self.poly.free(q)
     }
 
-    /// Resolves leaf `n` with its boundary nodes `ports`: `Err` when they fit no
-    /// pattern and the box may still be split.
+    /// Resolves leaf `n` with its boundary nodes `ports` into `out` (cleared first, so
+    /// one buffer serves every leaf): `Err` when they fit no pattern and the box may
+    /// still be split.
     pub fn resolve(
         &self,
         n: &Node,
         ports: &[Port],
         can_split: bool,
-    ) -> Result<LeafOutput, Unresolved> {
-        let mut out = LeafOutput::default();
+        out: &mut LeafOutput,
+    ) -> Result<(), Unresolved> {
+        clear(out);
         if ports.is_empty() {
-            return Ok(out);
+            return Ok(());
         }
         let set = &n.bs.set;
         let b = &n.aabb;
@@ -207,10 +209,11 @@ impl Resolver<'_> {
         if certified || !can_split {
             // at the cut-off the patterns are tried too (a near-degenerate cluster of
             // vertices closer than the resolution), but the box counts as uncertified
-            if let Some(mut o) = self.pattern(set, b, ports) {
-                o.uncertified = u32::from(!certified);
-                return Ok(o);
+            if self.pattern(set, b, ports, out).is_some() {
+                out.uncertified = u32::from(!certified);
+                return Ok(());
             }
+            clear(out);
         }
         if can_split {
             return Err(Unresolved);
@@ -218,7 +221,7 @@ impl Resolver<'_> {
         if ports.iter().all(|p| p.pair == ports[0].pair) && ports.len() % 2 == 0 {
             // one pair: its nodes joined in their order on the bisector
             let pair = ports[0].pair;
-            let mut mine: Vec<&Port> = ports.iter().collect();
+            let mut mine: SmallVec<[&Port; 8]> = ports.iter().collect();
             mine.sort_by(|x, y| self.order(pair, x.at, y.at));
             for w in mine.chunks(2) {
                 out.pieces.push(Piece {
@@ -249,7 +252,7 @@ impl Resolver<'_> {
             }
         }
         out.uncertified = 1;
-        Ok(out)
+        Ok(())
     }
 
     /// At the cut-off in `voronoi` mode, the ports of box `b` grouped by the pair of
@@ -314,12 +317,10 @@ impl Resolver<'_> {
     /// features hold its pair, vertices sharing a pair joined to each other; or,
     /// without a vertex, the nodes of each pair joined in their order along the
     /// bisector (Figs. 4, 5). A curve may end at the concave corner of its two edges.
-    fn pattern(&self, set: &[u32], b: &Aabb, ports: &[Port]) -> Option<LeafOutput> {
-        let mut out = LeafOutput::default();
+    fn pattern(&self, set: &[u32], b: &Aabb, ports: &[Port], out: &mut LeafOutput) -> Option<()> {
         let vs = self.vertices(set, b);
         if vs.is_empty() {
-            self.arcs_only(set, b, ports, &mut out)?;
-            return Some(out);
+            return self.arcs_only(set, b, ports, out);
         }
         for (at, t) in &vs {
             // a curve crossing the normal at a flat corner: the corner is a generator
@@ -332,8 +333,8 @@ impl Resolver<'_> {
             out.vertices.push(FoundVertex { at: *at, sites });
         }
         let holds = |t: &[u32; 3], pair: [u32; 2]| t.contains(&pair[0]) && t.contains(&pair[1]);
-        let mut degree = vec![0usize; vs.len()];
-        let mut joined: Vec<(usize, [u32; 2])> = Vec::new();
+        let mut degree: SmallVec<[usize; 4]> = smallvec![0; vs.len()];
+        let mut joined: SmallVec<[(usize, [u32; 2]); 8]> = SmallVec::new();
         for p in ports {
             let mut owners = (0..vs.len()).filter(|&v| holds(&vs[v].1, p.pair));
             let (Some(v), None) = (owners.next(), owners.next()) else {
@@ -386,17 +387,17 @@ impl Resolver<'_> {
                 degree[v] += 1;
             }
         }
-        degree.iter().all(|&d| d >= 2).then_some(out)
+        degree.iter().all(|&d| d >= 2).then_some(())
     }
 
     /// The nodes of each pair joined in their order along its bisector, an odd one out
     /// ending at its edges' concave corner in the box.
     fn arcs_only(&self, set: &[u32], b: &Aabb, ports: &[Port], out: &mut LeafOutput) -> Option<()> {
-        let mut pairs: Vec<[u32; 2]> = ports.iter().map(|p| p.pair).collect();
+        let mut pairs: SmallVec<[[u32; 2]; 8]> = ports.iter().map(|p| p.pair).collect();
         pairs.sort_unstable();
         pairs.dedup();
         for pair in pairs {
-            let mut mine: Vec<&Port> = ports.iter().filter(|p| p.pair == pair).collect();
+            let mut mine: SmallVec<[&Port; 8]> = ports.iter().filter(|p| p.pair == pair).collect();
             mine.sort_by(|x, y| self.order(pair, x.at, y.at));
             let mut i = 0;
             while i < mine.len() {
@@ -434,6 +435,14 @@ impl Resolver<'_> {
 /// Whether `q` lies in `[min, max)²` of `b`.
 fn half_open(b: &Aabb, q: Point) -> bool {
     b.min.x <= q.x && q.x < b.max.x && b.min.y <= q.y && q.y < b.max.y
+}
+
+/// Empties `out`, keeping its buffers.
+fn clear(out: &mut LeafOutput) {
+    out.pieces.clear();
+    out.vertices.clear();
+    out.uncertified = 0;
+    out.local_splits = 0;
 }
 
 fn sorted(mut s: [u32; 3]) -> Vec<u32> {

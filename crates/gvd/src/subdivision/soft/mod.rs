@@ -133,9 +133,9 @@ fn run_unit(
         .iter()
         .map(|&x| tree.leaf(x).expect("the order lists leaves"))
         .collect();
-    let uncertified: u32 = constructed.outputs.iter().map(|o| o.uncertified).sum();
+    let uncertified = constructed.output.uncertified;
     let mut complex =
-        super::assemble::assemble(constructed.outputs, 1e-12 * poly.scale, 0.125 * eps);
+        super::assemble::assemble(vec![constructed.output], 1e-12 * poly.scale, 0.125 * eps);
     output::name_features(&mut complex, &poly);
     let mut complex = output::clip(complex, &domain);
     if scene.mode() == Mode::Voronoi {

@@ -134,6 +134,19 @@ impl Quadtree {
         self.nodes[at as usize].quarters
     }
 
+    /// Which sides of node `at` (in the order of [`SIDES`]) face one of its siblings:
+    /// two for a quarter (the lower left quarter's right and top sides, …), none for
+    /// the root.
+    pub fn sibling_sides(&self, at: u32) -> [bool; 4] {
+        let parent = self.nodes[at as usize].parent;
+        if parent == NONE {
+            return [false; 4];
+        }
+        let q = at - self.nodes[parent as usize].quarters;
+        let (right, upper) = (q & 1 == 1, q >> 1 == 1);
+        [right, !right, upper, !upper]
+    }
+
     /// The quarter of inner node `at` that holds lattice point `p` (half-open boxes).
     fn quarter_of(&self, at: u32, p: [u64; 2]) -> u32 {
         let t = &self.nodes[at as usize];

@@ -133,7 +133,11 @@ impl Ctx<'_> {
                 y0.checked_sub(1).map(|y| [x0, y]),
                 Some([x0, y1]),
             ];
-            for p in probes.into_iter().flatten() {
+            // a sibling's leaves are no larger than `x`: only the other sides can face
+            // a larger leaf
+            let sibling = tree.sibling_sides(x);
+            let outer = probes.into_iter().zip(sibling).filter(|&(_, s)| !s);
+            for p in outer.filter_map(|(p, _)| p) {
                 while let Some(a) = tree.locate_from(x, p) {
                     let extent = tree.extent(a);
                     if extent[0] <= 2 * (x1 - x0) && extent[1] <= 2 * (y1 - y0) {

@@ -12,17 +12,19 @@ use super::refine::Ctx;
 use crate::control::Watch;
 use crate::error::Error;
 use crate::geom::Point;
-use crate::subdivision::resolve::{LeafOutput, Port, PortId};
+use crate::subdivision::resolve::{End, FoundVertex, LeafOutput, Piece, Port, PortId};
+use std::ops::Range;
 
 /// Rounds of local splitting of unresolved boxes before the cut-off decides.
 const MAX_ROUNDS: usize = 48;
 
-/// What the rounds leave: the leaves in depth-first order, in that order the outputs
-/// of those whose output is not empty (most leaves have no node on their sides), the
-/// number of leaves split and the number of rounds after the first.
+/// What the rounds leave: the leaves in depth-first order, their outputs joined in
+/// that order into one (each leaf's vertex numbers moved past the vertices before
+/// it, as [`crate::subdivision::assemble::assemble`] numbers them), the number of
+/// leaves split and the number of rounds after the first.
 pub struct Constructed {
     pub order: Vec<u32>,
-    pub outputs: Vec<LeafOutput>,
+    pub output: LeafOutput,
     pub local_splits: usize,
     pub rounds: usize,
 }
@@ -45,14 +47,27 @@ const EMPTY: u32 = u32::MAX - 1;
 
 /// The outputs of the resolved leaves: a state per tree node, four bytes, and the
 /// outputs that are not empty apart (a slot per node would be 56 bytes for each of
-/// the million nodes at 10^4 segments, nearly all empty).
+/// the million nodes at 10^4 segments, nearly all empty), their pieces and vertices
+/// in one store (not two vectors a leaf: allocating and freeing those took about a
+/// tenth of the run).
+#[derive(Default)]
 struct Outputs {
     state: Vec<u32>,
-    kept: Vec<LeafOutput>,
+    kept: Vec<Kept>,
+    pieces: Vec<Piece>,
+    vertices: Vec<FoundVertex>,
+}
+
+/// A kept output: its ranges in [`Outputs::pieces`] and [`Outputs::vertices`].
+struct Kept {
+    pieces: Range<usize>,
+    vertices: Range<usize>,
+    uncertified: u32,
 }
 
 impl Outputs {
-    fn set(&mut self, x: u32, output: LeafOutput) {
+    /// Keeps leaf `x`'s `output`, emptying it.
+    fn set(&mut self, x: u32, output: &mut LeafOutput) {
         let empty = output.pieces.is_empty()
             && output.vertices.is_empty()
             && output.uncertified == 0
@@ -60,17 +75,55 @@ impl Outputs {
         self.state[x as usize] = if empty {
             EMPTY
         } else {
-            self.kept.push(output);
+            let (p, v) = (self.pieces.len(), self.vertices.len());
+            self.pieces.append(&mut output.pieces);
+            self.vertices.append(&mut output.vertices);
+            self.kept.push(Kept {
+                pieces: p..self.pieces.len(),
+                vertices: v..self.vertices.len(),
+                uncertified: output.uncertified,
+            });
             (self.kept.len() - 1) as u32
         };
     }
 
-    /// Forgets leaf `x`'s output (its memory freed; the slot stays unused).
+    /// Forgets leaf `x`'s output (its pieces stay in the store, unused).
     fn reset(&mut self, x: u32) {
-        let k = std::mem::replace(&mut self.state[x as usize], UNRESOLVED);
-        if k < EMPTY {
-            self.kept[k as usize] = LeafOutput::default();
+        self.state[x as usize] = UNRESOLVED;
+    }
+
+    /// The outputs of the leaves `order`, joined in that order.
+    fn join(mut self, order: &[u32]) -> LeafOutput {
+        let mut out = LeafOutput::default();
+        for &x in order {
+            let k = match self.state[x as usize] {
+                UNRESOLVED => panic!("every leaf is resolved"),
+                EMPTY => continue,
+                k => &self.kept[k as usize],
+            };
+            let base = out.vertices.len() as u32;
+            let moved = |e: End| match e {
+                End::Vertex(v) => End::Vertex(base + v),
+                port => port,
+            };
+            out.pieces
+                .extend(self.pieces[k.pieces.clone()].iter_mut().map(|p| Piece {
+                    pair: p.pair,
+                    ends: p.ends.map(moved),
+                    points: std::mem::take(&mut p.points),
+                }));
+            out.vertices
+                .extend(
+                    self.vertices[k.vertices.clone()]
+                        .iter_mut()
+                        .map(|v| FoundVertex {
+                            at: v.at,
+                            sites: std::mem::take(&mut v.sites),
+                        }),
+                );
+            out.uncertified += k.uncertified;
         }
+        out
     }
 }
 
@@ -147,6 +200,8 @@ struct Round<'a> {
     cache: &'a mut NodeCache,
     scratch: &'a mut Scratch,
     outputs: &'a mut Outputs,
+    /// The output of the leaf being resolved, its buffers reused.
+    output: LeafOutput,
     /// The leaves whose nodes fit no pattern, to split.
     marked: Vec<u32>,
     /// The last round: boxes are not split.
@@ -183,8 +238,11 @@ impl Round<'_> {
         }
         scratch.sides = segments;
         let can_split = !self.last && self.ctx.can_split(&tree.ib(x), n);
-        match self.resolver.resolve(n, &ports, can_split) {
-            Ok(output) => self.outputs.set(x, output),
+        match self
+            .resolver
+            .resolve(n, &ports, can_split, &mut self.output)
+        {
+            Ok(()) => self.outputs.set(x, &mut self.output),
             Err(_) => self.marked.push(x),
         }
         scratch.ports = ports;
@@ -203,10 +261,7 @@ pub fn construct(
     tree: &mut Quadtree,
     watch: &Watch,
 ) -> Result<Constructed, Error> {
-    let mut outputs = Outputs {
-        state: Vec::new(),
-        kept: Vec::new(),
-    };
+    let mut outputs = Outputs::default();
     let mut cache = NodeCache {
         slot: Vec::new(),
         ranges: Vec::new(),
@@ -224,6 +279,7 @@ pub fn construct(
             cache: &mut cache,
             scratch: &mut scratch,
             outputs: &mut outputs,
+            output: LeafOutput::default(),
             marked: Vec::new(),
             last: rounds >= MAX_ROUNDS || ctx.budget.exhausted(),
         };
@@ -273,18 +329,10 @@ pub fn construct(
         rounds += 1;
     }
     let order = tree.depth_first();
-    let mut kept = std::mem::take(&mut outputs.kept);
-    let outputs = order
-        .iter()
-        .filter_map(|&x| match outputs.state[x as usize] {
-            UNRESOLVED => panic!("every leaf is resolved"),
-            EMPTY => None,
-            k => Some(std::mem::take(&mut kept[k as usize])),
-        })
-        .collect();
+    let output = outputs.join(&order);
     Ok(Constructed {
         order,
-        outputs,
+        output,
         local_splits,
         rounds,
     })

@@ -44,8 +44,13 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
     let (dx, dy) = (domain.width() / GRID as f64, domain.height() / GRID as f64);
     let rho = 0.5 * dx.hypot(dy);
     let join = JOIN * domain.longest_side();
-    let dist =
-        |q: Point, pts: &[Point]| pts.iter().map(|p| p.dist(q)).fold(f64::INFINITY, f64::min);
+    // the nearest sample by squared distance, one square root (no `hypot` per sample)
+    let dist = |q: Point, pts: &[Point]| {
+        pts.iter()
+            .map(|p| p.dist2(q))
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    };
     let mut out: BTreeSet<[Feature; 2]> = BTreeSet::new();
     let mut near: Vec<usize> = Vec::new();
     // per feature at the current grid point: (distance to its box, sampled distance if

@@ -396,7 +396,8 @@ struct SystemBox {
 /// stand for the f64 box, with rounding in their error bounds). A box is
 /// **certified** by the Krawczyk operator
 /// `K(X) = m − Y·F(m) + (I − Y·J(X))·(X − m)` with `m` the centre, `J(X)` an interval
-/// Jacobian (Bernstein ranges of the partial derivatives) and `Y ≈ J(m)⁻¹`:
+/// Jacobian (ranges of the derivatives of the Bernstein forms of `f` and `g` over `X`)
+/// and `Y ≈ J(m)⁻¹`:
 /// `K(X) ⊂ int X` proves a unique, simple root in `X` (Krawczyk 1969; Moore), and
 /// `K(X) ∩ X = ∅` proves none. The test runs on `X` inflated by a quarter around its
 /// centre, so roots on a box side are certified too; duplicates found from neighbouring
@@ -625,14 +626,14 @@ fn krawczyk_image(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<
         system[0].eval_interval(mx, my, zero),
         system[1].eval_interval(mx, my, zero),
     ];
-    let j: Vec<Interval> = jacobian
-        .iter()
-        .map(|p| Bernstein2::from_poly(p, x).range())
-        .collect();
     let jm: Vec<f64> = jacobian.iter().map(|p| p.eval(m.x, m.y, 0.0)).collect();
     let det = jm[0] * jm[3] - jm[1] * jm[2];
+    if !(det.is_finite() && det != 0.0) {
+        return None;
+    }
+    let j = interval_jacobian(system, jacobian, x)?;
     let finite = |i: &Interval| i.lo.is_finite() && i.hi.is_finite();
-    if !(det.is_finite() && det != 0.0 && fm.iter().chain(&j).all(finite)) {
+    if !fm.iter().chain(&j).all(finite) {
         return None;
     }
     let y = [jm[3] / det, -jm[1] / det, -jm[2] / det, jm[0] / det].map(Interval::point);
@@ -653,6 +654,37 @@ fn krawczyk_image(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<
     k.iter()
         .all(finite)
         .then(|| Aabb::new(Point::new(k[0].lo, k[1].lo), Point::new(k[0].hi, k[1].hi)))
+}
+
+/// Enclosures of `f_x, f_y, g_x, g_y` over `x`: the ranges of the derivatives of the
+/// Bernstein forms of `f` and `g` over `x` (differences of neighbouring coefficients
+/// times the degree: `∂/∂u` in the box's relative coordinate `u = (x − x₀)/(x₁ − x₀)`),
+/// divided by the box's width or height (two conversions from `Poly` instead of four).
+/// A box of zero width or height has no derivative along it in its forms: there the
+/// partial derivatives in `jacobian` are converted instead. `None` when a side's length
+/// is not a positive finite number.
+fn interval_jacobian(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<[Interval; 4]> {
+    if !(x.width() > 0.0 && x.height() > 0.0) {
+        return Some(std::array::from_fn(|k| {
+            Bernstein2::from_poly(&jacobian[k], x).range()
+        }));
+    }
+    // the exact side lengths, enclosed
+    let sides = [
+        Interval::point(x.max.x) - Interval::point(x.min.x),
+        Interval::point(x.max.y) - Interval::point(x.min.y),
+    ];
+    if !sides.iter().all(|s| s.hi.is_finite()) {
+        return None;
+    }
+    let mut j = [Interval::point(0.0); 4];
+    for (row, p) in system.iter().enumerate() {
+        let form = Bernstein2::from_poly(p, x);
+        for (col, (axis, side)) in [Axis::X, Axis::Y].into_iter().zip(sides).enumerate() {
+            j[2 * row + col] = form.derivative_range(axis).div(side)?;
+        }
+    }
+    Some(j)
 }
 
 /// One Newton step for the system at `p`; `None` where the Jacobian is singular.

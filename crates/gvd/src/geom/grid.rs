@@ -55,6 +55,21 @@ impl BucketGrid {
         })
     }
 
+    /// [`BucketGrid::of_segments`] over the edges of closed rings (every edge's end is
+    /// another's start, so the starts span them all), sized by
+    /// [`BucketGrid::segment_cell_side`], without padding.
+    pub fn of_ring_edges(count: usize, ends_of: impl Fn(usize) -> [Point; 2]) -> BucketGrid {
+        let extent = bounds_of_points((0..count).map(|k| ends_of(k)[0]));
+        let total: f64 = (0..count)
+            .map(|k| {
+                let [a, b] = ends_of(k);
+                a.dist(b)
+            })
+            .sum();
+        let side = Self::segment_cell_side(&extent, count, total);
+        Self::of_segments(extent, side, 4096, count, ends_of, 0.0)
+    }
+
     /// A cell side for [`BucketGrid::of_segments`] over `count` segments of total length
     /// `total_length` in `extent`: about one segment per cell, but at most about eight
     /// cells per segment on average.

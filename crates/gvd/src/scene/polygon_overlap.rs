@@ -176,17 +176,7 @@ fn counter_clockwise(ring: &[Point]) -> bool {
 /// Edges of different polygons that cross, or run along one line the same way over a
 /// common piece.
 fn edge_contacts(edges: &[Edge], note: &mut impl FnMut(Witness)) {
-    let extent = bounds_of_points(edges.iter().map(|e| e.a));
-    let total: f64 = edges.iter().map(|e| e.a.dist(e.b)).sum();
-    let side = BucketGrid::segment_cell_side(&extent, edges.len(), total);
-    let grid = BucketGrid::of_segments(
-        extent,
-        side,
-        4096,
-        edges.len(),
-        |k| [edges[k].a, edges[k].b],
-        0.0,
-    );
+    let grid = BucketGrid::of_ring_edges(edges.len(), |k| [edges[k].a, edges[k].b]);
     for bucket in grid.buckets() {
         for (x, &i) in bucket.iter().enumerate() {
             let e = edges[i as usize];

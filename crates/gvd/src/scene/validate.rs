@@ -123,17 +123,7 @@ fn check_crossings(rings: &[Vec<Point>]) -> Result<(), String> {
             })
         })
         .collect();
-    let extent = bounds_of_points(edges.iter().map(|e| e.a));
-    let total: f64 = edges.iter().map(|e| e.a.dist(e.b)).sum();
-    let side = BucketGrid::segment_cell_side(&extent, edges.len(), total);
-    let grid = BucketGrid::of_segments(
-        extent,
-        side,
-        4096,
-        edges.len(),
-        |k| [edges[k].a, edges[k].b],
-        0.0,
-    );
+    let grid = BucketGrid::of_ring_edges(edges.len(), |k| [edges[k].a, edges[k].b]);
     let mut first: Option<(&Edge, &Edge, Contact)> = None;
     for bucket in grid.buckets() {
         for (x, &i) in bucket.iter().enumerate() {

@@ -783,14 +783,45 @@ fn curves_mix_with_points_circles_and_algebraic_curves() {
     assert_eq!((d.vertices.len(), d.edges.len()), (5, 10));
 }
 
+/// In `complex` and `medial_axis` modes the subdivision engine computes curves by
+/// their pieces and corners (runs of spans without a ridge of their own, corners as
+/// points, zone boundaries removed): the same vertices as the free-form engine within a
+/// few epsilon with the same generators (a corner, a piece twice on a ridge's ends),
+/// the same edge pairs, and `gvd verify` passes.
 #[test]
-fn the_subdivision_engine_refuses_curves_outside_voronoi_mode() {
+fn the_subdivision_engine_agrees_by_features_in_complex_and_medial_axis_modes() {
     for name in [
         "freeform-bezier4-medial_axis.json",
         "freeform-piecewise-c1-complex.json",
+        "freeform-deep-concavity-medial_axis.json",
     ] {
+        let sc = scene(name);
+        let sub = run(&sc, Engine::Subdivision);
+        let ff = run(&sc, Engine::Freeform);
+        assert_eq!(sub.stats["engine"], "subdivision");
+        same_vertices(&sub, &ff, 4.0 * sc.epsilon());
+        assert_eq!(edge_pairs(&sub), edge_pairs(&ff), "{name}");
+        let report = gvd::verify(&sc, &sub, &gvd::VerifyOptions::default()).unwrap();
+        assert!(report.passed, "{name}: {report:?}");
+    }
+}
+
+/// Beside free-form curves in those modes the subdivision engine refuses sites whose
+/// features it does not name (a segment), and in `medial_axis` mode any other kind,
+/// naming the site.
+#[test]
+fn the_subdivision_engine_refuses_other_featured_sites_beside_curves() {
+    let curve = r#"{"kind": "bezier", "control_points": [[0, 0], [1, 2], [2, 0]]}"#;
+    for (mode, other) in [
+        ("complex", r#"{"kind": "segment", "from": [3, 0], "to": [3, 1]}"#),
+        ("medial_axis", r#"{"kind": "point", "at": [3, 0]}"#),
+    ] {
+        let text = format!(
+            r#"{{"domain": [-1, -1, 4, 3], "epsilon": 0.01, "mode": "{mode}", "sites": [{curve}, {other}]}}"#
+        );
+        let sc = Scene::from_json(&text).unwrap();
         let err = compute(
-            &scene(name),
+            &sc,
             &Options {
                 engine: Engine::Subdivision,
                 ..Default::default()
@@ -798,8 +829,8 @@ fn the_subdivision_engine_refuses_curves_outside_voronoi_mode() {
         )
         .unwrap_err();
         assert!(
-            matches!(&err, Error::Unsupported { site: 0, message, .. } if message.contains("--engine freeform")),
-            "{name}: {err}"
+            matches!(&err, Error::Unsupported { site: 1, message, .. } if message.contains("--engine freeform")),
+            "{mode}: {err}"
         );
     }
 }

@@ -605,14 +605,12 @@ pub fn pieces(scene: &Scene) -> Pieces {
     out
 }
 
-/// The parameters in `(0, 1)` where the curvature of `c` has an extremum (the curve's
-/// vertices): with `H = (X, Y, W)`, `κ = det(H, H', H'') W³ / |T|³`, `T = (X'W − XW',
-/// Y'W − YW')` (Farin02), so `κ' = 0` where
-/// `2 (det · W³)' |T|² − 3 det · W³ (|T|²)' = 0`, a polynomial isolated in Bernstein form.
-/// A line (degree 1) has none: its `κ` vanishes identically.
-pub fn curvature_extrema(c: &RationalBezier) -> Vec<f64> {
+/// With `H = (X, Y, W)` the homogeneous span, `κ = det(H, H', H'') W³ / |T|³`,
+/// `T = (X'W − XW', Y'W − YW')` (Farin02): the numerator `det · W³` and `|T|²`, in
+/// Bernstein form (`None` for a line, whose `κ` vanishes identically).
+fn curvature_parts(c: &RationalBezier) -> Option<(Bernstein1, Bernstein1)> {
     if c.degree() < 2 {
-        return Vec::new();
+        return None;
     }
     let h = c.homogeneous();
     let coord = |k: usize| Bernstein1::exact(h.iter().map(|p| p[k]).collect());
@@ -626,9 +624,42 @@ pub fn curvature_extrema(c: &RationalBezier) -> Vec<f64> {
         .add(&w.mul(&x1.mul(&y2).sub(&y1.mul(&x2))));
     let tx = x1.mul(&w).sub(&x.mul(&w1));
     let ty = y1.mul(&w).sub(&y.mul(&w1));
-    let t2 = tx.mul(&tx).add(&ty.mul(&ty));
-    let k = det.mul(&w.mul(&w).mul(&w));
-    let g = d(&k).mul(&t2).scale(2.0).sub(&k.mul(&d(&t2)).scale(3.0));
+    Some((det.mul(&w.mul(&w).mul(&w)), tx.mul(&tx).add(&ty.mul(&ty))))
+}
+
+/// The sign of `c`'s curvature where it is the same along the whole span (`+1`:
+/// bending left, `−1`: right, `0`: a line), from the Bernstein coefficients of its
+/// numerator ([`curvature_parts`]); `None` where they change sign.
+pub fn bend(c: &RationalBezier) -> Option<f64> {
+    let Some((k, _)) = curvature_parts(c) else {
+        return Some(0.0);
+    };
+    let range = k.range();
+    if range.lo > 0.0 {
+        Some(1.0)
+    } else if range.hi < 0.0 {
+        Some(-1.0)
+    } else if range.lo == 0.0 && range.hi == 0.0 {
+        Some(0.0)
+    } else {
+        None
+    }
+}
+
+/// `dκ/dt` of `c` up to a positive factor, in Bernstein form (`None` for a line): by
+/// [`curvature_parts`], `κ'` has the sign of `2 (det · W³)' |T|² − 3 det · W³ (|T|²)'`.
+pub fn curvature_trend(c: &RationalBezier) -> Option<Bernstein1> {
+    let (k, t2) = curvature_parts(c)?;
+    let d = |f: &Bernstein1| f.derivative();
+    Some(d(&k).mul(&t2).scale(2.0).sub(&k.mul(&d(&t2)).scale(3.0)))
+}
+
+/// The parameters in `(0, 1)` where the curvature of `c` has an extremum (the curve's
+/// vertices): the zeros of [`curvature_trend`], isolated in Bernstein form.
+pub fn curvature_extrema(c: &RationalBezier) -> Vec<f64> {
+    let Some(g) = curvature_trend(c) else {
+        return Vec::new();
+    };
     isolate(&g, 1e-12)
         .into_iter()
         .map(|r| {

@@ -235,6 +235,34 @@ pub(super) fn pair<A: CurveTree, B: CurveTree>(
     }
 }
 
+/// [`pair`] for the field `|q − p|` of a point `p` against a curve: the mean value
+/// form about the box's centre, where the point's distance is known to rounding.
+pub(super) fn pair_with_point<T: CurveTree>(
+    p: Point,
+    curve: &T,
+    so: &CurveState,
+    b: &Aabb,
+) -> PairBound {
+    let distance = |b: &Aabb| ((b.x() - p.x).sqr() + (b.y() - p.y).sqr()).sqrt();
+    let to_p = unit_bound(b, &Aabb::new(p, p));
+    let g = [to_p[0] - so.gradient[0], to_p[1] - so.gradient[1]];
+    let plain = distance(b) - so.bound();
+    let c = b.center();
+    let at_c = Aabb::new(c, c);
+    let (_, o_lo, o_hi) = kept_nodes(curve, &at_c, &so.nodes);
+    let centre = distance(&at_c) - Interval::new(o_lo, o_hi);
+    let mean = centre + g[0] * (b.x() - c.x) + g[1] * (b.y() - c.y);
+    let (lo, hi) = (plain.lo.max(mean.lo), plain.hi.min(mean.hi));
+    PairBound {
+        value: if lo > hi {
+            plain
+        } else {
+            Interval::new(lo, hi)
+        },
+        gradient: Some(g),
+    }
+}
+
 /// The squared length of a box's diagonal.
 fn diagonal_squared(b: &Aabb) -> f64 {
     b.width() * b.width() + b.height() * b.height()

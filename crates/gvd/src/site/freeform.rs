@@ -21,7 +21,9 @@
 //! and the node that exclude both prove a node irrelevant. Point values are the
 //! certified foot-point search of the free-form engine ([`span_distance`]).
 
-use super::curve_tree::{direction, meet_normal, unit_bound, CurveField, CurveTree, NONE};
+use super::curve_tree::{
+    direction, meet_normal, unit_bound, CurveField, CurveState, CurveTree, NONE,
+};
 use crate::error::Error;
 use crate::freeform::bisector::SpanForms;
 use crate::freeform::nearest::span_distance;
@@ -214,6 +216,63 @@ impl FreeformField {
             level = next;
         }
         // the root must be the last node: a single span's top already is
+    }
+
+    /// The curve's two ends: its first span's start and its last span's end.
+    pub fn ends(&self) -> [Point; 2] {
+        match (self.spans.first(), self.spans.last()) {
+            (Some(a), Some(z)) => [a.eval(0.0), z.eval(1.0)],
+            _ => [Point::new(f64::NAN, f64::NAN); 2],
+        }
+    }
+
+    /// True when over `b` no point of the curve can be nearest but span ends within
+    /// the rounding `slack` of `p` (the tests of [`CurveTree::holds_no_foot`] on the
+    /// nodes `s` kept): then the distance over `b` is `|q − p|`, and any field with a
+    /// point at `p` is at least as near.
+    pub fn only_ends_at(&self, s: &CurveState, b: &Aabb, p: Point) -> bool {
+        let near = |e: Point| e.dist(p) <= self.slack;
+        s.nodes.iter().all(|&n| {
+            let node = &self.nodes[n as usize];
+            let Some(t) = node.tangent else {
+                return false;
+            };
+            let (dx, dy) = (b.x() - node.bbox.x(), b.y() - node.bbox.y());
+            let along = |(e, t): SpanEnd| (b.x() - e.x).scale(t.x) + (b.y() - e.y).scale(t.y);
+            (dx * t[0] + dy * t[1]).excludes_zero()
+                && node.start.is_none_or(|e| along(e).lo > 0.0 || near(e.0))
+                && node.end.is_none_or(|e| along(e).hi < 0.0 || near(e.0))
+        })
+    }
+
+    /// The nearest point of the curve to `q`, the unit tangent there, and which end of
+    /// the curve it is (0: the start, 1: the end), if one.
+    pub fn foot(&self, q: Point) -> Option<(Point, Point, Option<usize>)> {
+        let mut best: Option<(f64, usize, f64)> = None;
+        for (k, c) in self.spans.iter().enumerate() {
+            if best.is_some_and(|(d, _, _)| self.span_boxes[k].outside_distance(q) >= d) {
+                continue;
+            }
+            let (d, t) = span_distance(c, &self.forms[k], q);
+            if best.is_none_or(|(b, _, _)| d < b) {
+                best = Some((d, k, t));
+            }
+        }
+        let (_, k, t) = best?;
+        let c = &self.spans[k];
+        let end = if k == 0 && t == 0.0 {
+            Some(0)
+        } else if k + 1 == self.spans.len() && t == 1.0 {
+            Some(1)
+        } else {
+            None
+        };
+        let mut tangent = c.derivative(t);
+        if tangent.norm() == 0.0 {
+            let (tin, tout) = c.end_tangents();
+            tangent = if t < 0.5 { tin } else { tout };
+        }
+        Some((c.eval(t), tangent * (1.0 / tangent.norm()), end))
     }
 
     /// The distance from `q` to the curve and the nearest point, over the spans of

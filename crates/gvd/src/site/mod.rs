@@ -6,11 +6,13 @@ mod circle;
 mod curve_tree;
 mod ellipse;
 mod euclidean;
+pub mod featured;
 mod freeform;
 pub mod implicit;
 mod lp;
 pub mod polygonal;
 mod polynomial;
+pub mod zone;
 
 pub use algebraic::AlgebraicField;
 pub use circle::CircleField;
@@ -258,55 +260,6 @@ impl SiteField {
     }
 }
 
-/// The fields of a `medial_axis` scene: each algebraic curve as its pieces
-/// ([`algebraic::medial::pieces`]), every other site as in
-/// [`SiteField::for_scene_with`].
-pub struct MedialFields {
-    /// The fields, the pieces of one curve in a row.
-    pub fields: Vec<SiteField>,
-    /// The site of each field.
-    pub owners: Vec<usize>,
-    /// The ends of each field's piece (none for a whole site).
-    pub ends: Vec<Vec<algebraic::medial::End>>,
-    /// The regions the algebraic curves bound.
-    pub regions: Vec<algebraic::medial::Region>,
-}
-
-impl MedialFields {
-    /// The fields of `scene` in `medial_axis` mode.
-    pub fn for_scene(scene: &Scene, options: &FieldOptions) -> Result<MedialFields, Error> {
-        let mut out = MedialFields {
-            fields: Vec::new(),
-            owners: Vec::new(),
-            ends: Vec::new(),
-            regions: Vec::new(),
-        };
-        for (i, s) in scene.sites().iter().enumerate() {
-            if let SiteKind::Algebraic { equation, clip } = &s.kind {
-                let clip = clip.unwrap_or(scene.domain());
-                let pieces = algebraic::medial::pieces(i, equation.poly(), clip, scene.epsilon())?;
-                out.owners
-                    .extend(std::iter::repeat_n(i, pieces.fields.len()));
-                out.ends.extend(pieces.ends.iter().map(|e| e.to_vec()));
-                out.fields.extend(
-                    pieces
-                        .fields
-                        .into_iter()
-                        .map(|f| SiteField::Algebraic(Box::new(f))),
-                );
-                out.regions.push(pieces.region);
-            } else {
-                let field =
-                    SiteField::from_site_at(i, &s.kind, &scene.domain(), scene.epsilon(), options)?;
-                out.fields.push(field);
-                out.owners.push(i);
-                out.ends.push(Vec::new());
-            }
-        }
-        Ok(out)
-    }
-}
-
 /// [`DistanceField`] for [`SiteField`], delegating to each family: `$variant` names
 /// both a [`SiteField`] and its [`FieldState`]. A state of another family (never made
 /// by the engine) is replaced by a fresh one for the box.
@@ -386,7 +339,8 @@ macro_rules! delegate_to_families {
             }
 
             /// One family's own pair bound; across families, a point and a circle by
-            /// the circles' form, else the difference of the two bounds.
+            /// the circles' form, a point and a free-form curve by the mean value form
+            /// (`curve_tree::pair_with_point`), else the difference of the two bounds.
             fn pair(&self, s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> PairBound {
                 match (self, other, s, so) {
                     $((
@@ -401,14 +355,33 @@ macro_rules! delegate_to_families {
                     (SiteField::Euclidean(p), SiteField::Circle(q), _, _) => {
                         circle::pair((p.at, 0.0), (q.center, q.radius), b)
                     }
+                    (SiteField::Euclidean(p), SiteField::Freeform(q), _, FieldState::Freeform(so)) => {
+                        curve_tree::pair_with_point(p.at, q.as_ref(), so, b)
+                    }
+                    (SiteField::Freeform(p), SiteField::Euclidean(q), FieldState::Freeform(s), _) => {
+                        let h = curve_tree::pair_with_point(q.at, p.as_ref(), s, b);
+                        PairBound {
+                            value: -h.value,
+                            gradient: h.gradient.map(|g| [-g[0], -g[1]]),
+                        }
+                    }
                     _ => bound_difference(self, s, other, so, b),
                 }
             }
 
-            /// Algebraic curves by the sides they lie on (`algebraic::occlusion`).
-            fn occludes(&self, _s: &FieldState, other: &SiteField, _so: &FieldState, b: &Aabb) -> bool {
-                match (self, other) {
-                    (SiteField::Algebraic(p), SiteField::Algebraic(q)) => p.occludes_over(q, b),
+            /// Algebraic curves by the sides they lie on (`algebraic::occlusion`); a
+            /// free-form curve whose only possible nearest points over `b` are its ends at
+            /// a point of `self` (a corner's point, or another curve's end: a joint), by
+            /// `self` ([`FreeformField::only_ends_at`]).
+            fn occludes(&self, _s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> bool {
+                match (self, other, so) {
+                    (SiteField::Algebraic(p), SiteField::Algebraic(q), _) => p.occludes_over(q, b),
+                    (SiteField::Euclidean(p), SiteField::Freeform(f), FieldState::Freeform(s)) => {
+                        f.only_ends_at(s, b, p.at)
+                    }
+                    (SiteField::Freeform(a), SiteField::Freeform(f), FieldState::Freeform(s)) => {
+                        a.ends().into_iter().any(|e| f.only_ends_at(s, b, e))
+                    }
                     _ => false,
                 }
             }

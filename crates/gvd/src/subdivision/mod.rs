@@ -4,9 +4,9 @@
 
 mod assemble;
 mod budget;
+mod featured;
 mod filter;
 mod locate;
-mod medial;
 mod resolve;
 mod segments;
 pub mod soft;
@@ -66,16 +66,16 @@ impl Params {
 /// power-of-two scale where its largest coordinate is about 1, and its diagram and
 /// boxes scaled back (`stats.rescaled_by` gives the factor used): the same diagram,
 /// scaled, as the scene at unit scale. `watch` stops the run early. In `medial_axis`
-/// mode the diagram is that of [`medial`] (unscaled).
+/// mode, and in `complex` mode with free-form curves, the diagram is that of the sites'
+/// features ([`featured`], unscaled).
 pub(crate) fn run_scene(
     scene: &Scene,
     field_options: &FieldOptions,
     params: &Params,
     watch: &Watch,
 ) -> Result<Output, Error> {
-    refuse_freeform_features(scene)?;
-    if scene.mode() == crate::scene::Mode::MedialAxis {
-        return medial::run(scene, field_options, params, watch);
+    if featured_mode(scene) {
+        return featured::run(scene, field_options, params, watch);
     }
     let rounded = round_ellipses_as_circles(scene);
     let scene = rounded.as_ref().unwrap_or(scene);
@@ -138,25 +138,16 @@ fn add_curve_stats(fields: &[SiteField], complex: &mut VoronoiComplex) {
     }
 }
 
-/// Refuses a free-form curve outside `voronoi` mode: its field here is the distance to
-/// the whole curve, while `complex` and `medial_axis` modes name its pieces and corners
-/// as generators, which the free-form engine computes.
-fn refuse_freeform_features(scene: &Scene) -> Result<(), Error> {
+/// Whether `scene` is computed by its features' fields ([`featured`]): in
+/// `medial_axis` mode, and in `complex` mode when it has free-form curves (whose pieces
+/// and corners are that mode's generators).
+fn featured_mode(scene: &Scene) -> bool {
     use crate::scene::{Mode, SiteKind};
-    if scene.mode() == Mode::Voronoi {
-        return Ok(());
-    }
     let freeform = |k: &SiteKind| matches!(k, SiteKind::Bezier { .. } | SiteKind::Bspline { .. });
-    match scene.sites().iter().position(|s| freeform(&s.kind)) {
-        Some(i) => Err(Error::Unsupported {
-            site: i,
-            kind: scene.sites()[i].kind.name().to_string(),
-            message: format!(
-                "the subdivision engine computes free-form curves in 'voronoi' mode only; mode '{}' is computed by the free-form engine (--engine freeform, or auto for scenes of curves alone)",
-                scene.mode().name()
-            ),
-        }),
-        None => Ok(()),
+    match scene.mode() {
+        Mode::MedialAxis => true,
+        Mode::Complex => scene.sites().iter().any(|s| freeform(&s.kind)),
+        Mode::Voronoi => false,
     }
 }
 

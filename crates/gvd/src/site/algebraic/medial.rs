@@ -24,6 +24,7 @@ use crate::geom::{Aabb, Axis, Point};
 use crate::num::bernstein::Bernstein2;
 use crate::num::poly::Poly;
 use crate::num::roots::{self, SystemOptions};
+use crate::site::zone::ZoneEnd;
 
 /// Deepest halving of a cell before the curve is declared too close to a cell's corner.
 const MAX_DEPTH: u32 = 40;
@@ -35,41 +36,11 @@ const SPLIT_AT: f64 = 0.512_345_678_9;
 pub struct Pieces {
     /// The pieces' distance fields, one arc of monotone curvature each.
     pub fields: Vec<AlgebraicField>,
-    /// The two ends of each piece (where it crosses its clip box's sides).
-    pub ends: Vec<[End; 2]>,
+    /// The two ends of each piece (where it crosses its clip box's sides), with the
+    /// zone boundary of the piece next to it there.
+    pub ends: Vec<[ZoneEnd; 2]>,
     /// The region inside the curve.
     pub region: Region,
-}
-
-/// An end of a piece, shared with the next piece of the curve. The points whose nearest
-/// point on both pieces is the end form the *zone boundary* of the two: the inward
-/// normal there, out to the centre of curvature `at + ρ·inward`, `ρ = 1/κ` (where
-/// the end stops being a local nearest point; without end where the curve bends away
-/// from the region) or to where a third piece is nearer. It belongs to the diagram of
-/// the pieces, not to the medial axis; beyond the centre of curvature of a vertex, the
-/// same normal carries the ridge that ends there.
-#[derive(Clone, Copy, Debug)]
-pub struct End {
-    /// The point.
-    pub at: Point,
-    inward: Point,
-    focal: f64,
-}
-
-impl End {
-    /// Whether `q` lies within `slop` of the zone boundary at this end (see [`End`]).
-    pub fn zone_holds(&self, q: Point, slop: f64) -> bool {
-        let d = q - self.at;
-        d.cross(self.inward).abs() <= slop && d.dot(self.inward) <= self.focal
-    }
-
-    /// The centre of curvature `at + ρ·inward`, where a ridge ends if this end is a
-    /// vertex of the curve (none where the curve bends away from the region).
-    pub fn centre(&self) -> Option<Point> {
-        self.focal
-            .is_finite()
-            .then(|| self.at + self.inward * self.focal)
-    }
 }
 
 /// The region a closed smooth curve bounds by the even-odd rule: `f` changes sign across
@@ -263,7 +234,7 @@ fn crossings(form: &Bernstein2, b: &Aabb) -> Option<Vec<Point>> {
 /// outside) and its radius of curvature towards it: the curvature vector of `{f = 0}`
 /// is `−(tᵀ H t / |∇f|) ∇f/|∇f|` (`t` the unit tangent, `H` the Hessian of `f`), so the
 /// curvature towards the inside is `κ = s·tᵀ H t / |∇f|`.
-fn end(jet: &Jet, outside: f64, at: Point) -> End {
+fn end(jet: &Jet, outside: f64, at: Point) -> ZoneEnd {
     let (x, y) = (at.x, at.y);
     let g = Point::new(jet.fx.eval(x, y), jet.fy.eval(x, y));
     let unit = g * (1.0 / g.norm());
@@ -272,15 +243,13 @@ fn end(jet: &Jet, outside: f64, at: Point) -> End {
         + 2.0 * t.x * t.y * jet.fxy.eval(x, y)
         + t.y * t.y * jet.fyy.eval(x, y);
     let kappa = outside * bend / g.norm();
-    End {
-        at,
-        inward: unit * -outside,
-        focal: if kappa > 0.0 {
-            1.0 / kappa
-        } else {
-            f64::INFINITY
-        },
-    }
+    let focal = if kappa > 0.0 {
+        1.0 / kappa
+    } else {
+        f64::INFINITY
+    };
+    // outside the region the zone boundary does not matter: no end there
+    ZoneEnd::new(at, unit * -outside, [focal, f64::INFINITY])
 }
 
 /// `V = 2 G (∇N · T) − 3 N (∇G · T)`, which has the sign of `dκ/ds` along

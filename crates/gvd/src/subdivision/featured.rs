@@ -1,0 +1,189 @@
+//! `complex` and `medial_axis` modes over distance fields where curves have features
+//! (SYMW11's problem, the medial axis of regions bounded by closed algebraic curves;
+//! HREK07's free-form curves by their pieces and corners). The diagram is that of the
+//! sites' pieces ([`FeatureFields`]: each curve cut into arcs with no ridge of their
+//! own), kept where it belongs to the mode's diagram ([`FeatureFields::keeps`]: inside
+//! the regions in `medial_axis` mode, off the solid side of closed free-form curves in
+//! `complex` mode), and rid of the zone boundaries between pieces: the edges of a
+//! corner and the pieces ending at it, and the points whose nearest point on two pieces
+//! is their shared smooth end (within the resolution of the normal there, up to the
+//! centre of curvature: [`ZoneEnd`](crate::site::zone::ZoneEnd)). What remains are the
+//! points whose distance is reached at two distinct points of different features or of
+//! one feature: the features' diagram, ridges included. Pieces are named by the
+//! generators they belong to (a ridge of one piece lists it twice).
+
+use super::{run_watched, Output, Params};
+use crate::complex::prune::keep_passing;
+use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
+use crate::control::Watch;
+use crate::error::Error;
+use crate::geom::Point;
+use crate::scene::Scene;
+use crate::site::featured::{FeatureFields, Keep};
+use crate::site::{FieldOptions, SiteField};
+use serde_json::json;
+
+/// Ends of two pieces within this fraction of the domain's size are their shared end
+/// (each piece computes it to about 1e-15 of its box).
+const SHARED_END: f64 = 1e-9;
+
+/// Computes the diagram of `scene`'s features (mode `complex` or `medial_axis`, sites
+/// the subdivision engine takes, among them algebraic and free-form curves).
+pub(crate) fn run(
+    scene: &Scene,
+    field_options: &FieldOptions,
+    params: &Params,
+    watch: &Watch,
+) -> Result<Output, Error> {
+    let m = FeatureFields::for_scene(scene, field_options)?;
+    let mut out = run_watched(&m.fields, params, watch)?;
+    let size = params.domain.longest_side();
+    let resolution = out
+        .complex
+        .stats
+        .get("resolution")
+        .and_then(|v| v.as_f64())
+        .unwrap_or(params.epsilon);
+    let on_curve = 1e-9 * size;
+    let passes = |e: &Edge, q: Point| {
+        let [a, b] = e.sites.map(|g| g.site());
+        m.keeps(a, q, on_curve)
+            && m.keeps(b, q, on_curve)
+            && !m.zone_neighbours[a].contains(&b)
+            && !m.ends[a].iter().any(|end| {
+                m.ends[b]
+                    .iter()
+                    .any(|other| end.at.dist(other.at) <= SHARED_END * size)
+                    && end.zone_holds(q, resolution)
+            })
+    };
+    keep_passing(&mut out.complex, &passes, resolution / 4.0, &|_, _| None);
+    snap_ends(&mut out.complex, &m, resolution);
+    name_generators(&mut out.complex, &m);
+    split_at_changes(&mut out.complex);
+    out.complex.cells.clear();
+    out.complex
+        .stats
+        .insert("feature_fields".into(), json!(m.fields.len()));
+    Ok(out)
+}
+
+/// Moves each end of the diagram (a vertex of degree one) within `tol` of where such
+/// an end truly lies to there. A ridge ends at a centre of curvature of a piece end:
+/// the cut on the zone boundary lies on the simplified polyline, up to a fraction of
+/// the resolution aside, and near a vertex of the curve the nearest point is flat to
+/// fourth order, so that much aside puts the foot, and its centre of curvature, several
+/// resolutions away. An edge that reaches a corner ends there, and its end lists the
+/// corner (the subdivision stops a box short of it). Edges left without length (a
+/// stub at a corner, shorter than the cut's tolerance) go.
+fn snap_ends(complex: &mut VoronoiComplex, m: &FeatureFields, tol: f64) {
+    let mut degree = vec![0usize; complex.vertices.len()];
+    for e in &complex.edges {
+        for v in [e.from, e.to].into_iter().flatten() {
+            degree[v] += 1;
+        }
+    }
+    let centres = m.ends.iter().flatten().flat_map(|e| e.centres()).map(|c| (c, None));
+    let corners = m.fields.iter().enumerate().filter_map(|(k, f)| match (f, &m.keep[k]) {
+        (SiteField::Euclidean(p), Keep::Corner { .. }) => Some((p.at, Some(k))),
+        _ => None,
+    });
+    let targets: Vec<(Point, Option<usize>)> = centres.chain(corners).collect();
+    for (v, vertex) in complex.vertices.iter_mut().enumerate() {
+        if degree[v] != 1 {
+            continue;
+        }
+        let nearest = targets
+            .iter()
+            .min_by(|a, b| a.0.dist(vertex.at).total_cmp(&b.0.dist(vertex.at)));
+        if let Some(&(at, corner)) = nearest.filter(|t| t.0.dist(vertex.at) <= tol) {
+            vertex.at = at;
+            if let Some(g) = corner.map(Generator::Site) {
+                if !vertex.sites.contains(&g) {
+                    vertex.sites.push(g);
+                }
+            }
+        }
+    }
+    for e in &mut complex.edges {
+        let mut points = e.points.to_vec();
+        if let (Some(v), Some(first)) = (e.from, points.first_mut()) {
+            *first = complex.vertices[v].at;
+        }
+        if let (Some(v), Some(last)) = (e.to, points.last_mut()) {
+            *last = complex.vertices[v].at;
+        }
+        e.points = points.into();
+    }
+    complex
+        .edges
+        .retain(|e| e.points.iter().any(|&p| p != e.points[0]));
+    complex.drop_unused_vertices();
+}
+
+/// Replaces each generator (a field's index) by the generator it stands for, and drops
+/// the generator changes along an edge that no longer change anything.
+fn name_generators(complex: &mut VoronoiComplex, m: &FeatureFields) {
+    let name = |g: &mut Generator| *g = m.generators[g.site()];
+    for v in &mut complex.vertices {
+        v.sites.iter_mut().for_each(name);
+    }
+    for e in &mut complex.edges {
+        e.sites.iter_mut().for_each(name);
+        let mut last = e.sites;
+        e.sites_along.retain_mut(|c| {
+            c.sites.iter_mut().for_each(name);
+            let changes = c.sites != last;
+            last = c.sites;
+            changes
+        });
+    }
+}
+
+/// Splits each edge where its generators change (where a zone boundary left the
+/// diagram): there the two pairs meet at a vertex of the three generators, as where a
+/// corner's zone ends along an edge.
+fn split_at_changes(complex: &mut VoronoiComplex) {
+    let mut edges = Vec::with_capacity(complex.edges.len());
+    for e in std::mem::take(&mut complex.edges) {
+        if e.sites_along.is_empty() {
+            edges.push(e);
+            continue;
+        }
+        let (mut from, mut start, mut sites) = (e.from, 0, e.sites);
+        for change in &e.sites_along {
+            let mut generators: smallvec::SmallVec<[Generator; 3]> = sites.into_iter().collect();
+            generators.extend(change.sites.into_iter().filter(|g| !sites.contains(g)));
+            complex.vertices.push(Vertex {
+                at: e.points[change.start],
+                sites: generators,
+                clearance: None,
+            });
+            let to = Some(complex.vertices.len() - 1);
+            edges.push(part(&e, sites, from, to, start..change.start + 1));
+            (from, start, sites) = (to, change.start, change.sites);
+        }
+        edges.push(part(&e, sites, from, e.to, start..e.points.len()));
+    }
+    complex.edges = edges;
+}
+
+/// The points `range` of `e` as an edge of `sites` from `from` to `to`.
+fn part(
+    e: &Edge,
+    sites: [Generator; 2],
+    from: Option<usize>,
+    to: Option<usize>,
+    range: std::ops::Range<usize>,
+) -> Edge {
+    Edge {
+        sites,
+        from,
+        to,
+        points: e.points[range].into(),
+        bisector: Vec::new(),
+        parametric: Vec::new(),
+        clearance: Vec::new(),
+        sites_along: Vec::new(),
+    }
+}

@@ -813,7 +813,10 @@ fn the_subdivision_engine_agrees_by_features_in_complex_and_medial_axis_modes() 
 fn the_subdivision_engine_refuses_other_featured_sites_beside_curves() {
     let curve = r#"{"kind": "bezier", "control_points": [[0, 0], [1, 2], [2, 0]]}"#;
     for (mode, other) in [
-        ("complex", r#"{"kind": "segment", "from": [3, 0], "to": [3, 1]}"#),
+        (
+            "complex",
+            r#"{"kind": "segment", "from": [3, 0], "to": [3, 1]}"#,
+        ),
         ("medial_axis", r#"{"kind": "point", "at": [3, 0]}"#),
     ] {
         let text = format!(

@@ -6,8 +6,9 @@
 //! the regions in `medial_axis` mode, off the solid side of closed free-form curves in
 //! `complex` mode), and rid of the zone boundaries between pieces: the edges of a
 //! corner and the pieces ending at it, and the points whose nearest point on two pieces
-//! is their shared smooth end (within the resolution of the normal there, up to the
-//! centre of curvature: [`ZoneEnd`](crate::site::zone::ZoneEnd)). What remains are the
+//! of one generator is their shared smooth end (within the resolution of the normal
+//! there, up to the centre of curvature: [`ZoneEnd`](crate::site::zone::ZoneEnd); where
+//! two sites join smoothly, that normal separates two generators and stays). What remains are the
 //! points whose distance is reached at two distinct points of different features or of
 //! one feature: the features' diagram, ridges included. Pieces are named by the
 //! generators they belong to (a ridge of one piece lists it twice).
@@ -50,12 +51,13 @@ pub(crate) fn run(
         m.keeps(a, q, on_curve)
             && m.keeps(b, q, on_curve)
             && !m.zone_neighbours[a].contains(&b)
-            && !m.ends[a].iter().any(|end| {
-                m.ends[b]
-                    .iter()
-                    .any(|other| end.at.dist(other.at) <= SHARED_END * size)
-                    && end.zone_holds(q, resolution)
-            })
+            && !(m.generators[a] == m.generators[b]
+                && m.ends[a].iter().any(|end| {
+                    m.ends[b]
+                        .iter()
+                        .any(|other| end.at.dist(other.at) <= SHARED_END * size)
+                        && end.zone_holds(q, resolution)
+                }))
     };
     keep_passing(&mut out.complex, &passes, resolution / 4.0, &|_, _| None);
     snap_ends(&mut out.complex, &m, resolution);
@@ -83,11 +85,20 @@ fn snap_ends(complex: &mut VoronoiComplex, m: &FeatureFields, tol: f64) {
             degree[v] += 1;
         }
     }
-    let centres = m.ends.iter().flatten().flat_map(|e| e.centres()).map(|c| (c, None));
-    let corners = m.fields.iter().enumerate().filter_map(|(k, f)| match (f, &m.keep[k]) {
-        (SiteField::Euclidean(p), Keep::Corner { .. }) => Some((p.at, Some(k))),
-        _ => None,
-    });
+    let centres = m
+        .ends
+        .iter()
+        .flatten()
+        .flat_map(|e| e.centres())
+        .map(|c| (c, None));
+    let corners = m
+        .fields
+        .iter()
+        .enumerate()
+        .filter_map(|(k, f)| match (f, &m.keep[k]) {
+            (SiteField::Euclidean(p), Keep::Corner { .. }) => Some((p.at, Some(k))),
+            _ => None,
+        });
     let targets: Vec<(Point, Option<usize>)> = centres.chain(corners).collect();
     for (v, vertex) in complex.vertices.iter_mut().enumerate() {
         if degree[v] != 1 {

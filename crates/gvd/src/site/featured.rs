@@ -30,7 +30,7 @@ use crate::complex::{FeatureKind, Generator};
 use crate::error::Error;
 use crate::freeform::pieces::{self, curvature_trend, Side, Span};
 use crate::geom::bezier::RationalBezier;
-use crate::geom::Point;
+use crate::geom::{Aabb, Point};
 use crate::scene::{Mode, Scene, SiteKind};
 use std::ops::Range;
 
@@ -53,6 +53,9 @@ pub struct FeatureFields {
     pub keep: Vec<Keep>,
     /// The regions the algebraic curves bound.
     pub regions: Vec<Region>,
+    /// In `medial_axis` mode with free-form curves (then the only sites), a box holding
+    /// every curve, and so the region they bound.
+    pub region_box: Option<Aabb>,
 }
 
 /// Where the points of a field's edges belong to the diagram.
@@ -82,6 +85,7 @@ impl FeatureFields {
             zone_neighbours: Vec::new(),
             keep: Vec::new(),
             regions: Vec::new(),
+            region_box: None,
         };
         let medial = scene.mode() == Mode::MedialAxis;
         let freeform = scene.sites().iter().position(|s| is_freeform(&s.kind));
@@ -163,6 +167,9 @@ impl FeatureFields {
     fn add_freeform(&mut self, scene: &Scene) -> Result<(), Error> {
         let cut = pieces::pieces(scene);
         let tol = pieces::JOIN * scene.domain().longest_side();
+        if scene.mode() == Mode::MedialAxis {
+            self.region_box = cut.spans.iter().map(|s| s.bbox).reduce(|a, b| a.union(&b));
+        }
         let first_corner = self.fields.len();
         for c in &cut.corners {
             let corner = Generator::Feature {

@@ -18,7 +18,7 @@ use crate::complex::prune::keep_passing;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
 use crate::control::Watch;
 use crate::error::Error;
-use crate::geom::Point;
+use crate::geom::{Aabb, Point};
 use crate::scene::Scene;
 use crate::site::featured::{FeatureFields, Keep};
 use crate::site::{FieldOptions, SiteField};
@@ -37,6 +37,19 @@ pub(crate) fn run(
     watch: &Watch,
 ) -> Result<Output, Error> {
     let m = FeatureFields::for_scene(scene, field_options)?;
+    // the medial axis of curves lies inside them: no need to subdivide the rest
+    let near_curves = m.region_box.and_then(|b| {
+        let margin = 2.0 * params.epsilon;
+        let grown = Aabb::new(
+            b.min - Point::new(margin, margin),
+            b.max + Point::new(margin, margin),
+        );
+        params.domain.intersection(&grown)
+    });
+    let params = &Params {
+        domain: near_curves.unwrap_or(params.domain),
+        ..*params
+    };
     let mut out = run_watched(&m.fields, params, watch)?;
     let size = params.domain.longest_side();
     let resolution = out

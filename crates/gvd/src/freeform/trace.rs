@@ -9,8 +9,8 @@
 //! joined to the nearest root (or special point) on the slab's sides.
 
 use crate::geom::{Aabb, Axis, Point};
-use crate::num::bernstein::Bernstein2;
-use crate::num::roots::{isolate, refine_by_newton, solve_system, SystemOptions};
+use crate::num::bernstein::{Bernstein1, Bernstein2};
+use crate::num::roots::{isolate, refine_by_newton, solve_system, RootInterval, SystemOptions};
 
 /// Special points closer than this in `t` share a slab side.
 const SAME_T: f64 = 1e-10;
@@ -32,19 +32,23 @@ pub struct Branch {
 pub fn roots_at(f: &Bernstein2, t: f64) -> Vec<f64> {
     let col = f.restrict(Axis::X, t);
     isolate(&col, 1e-13)
-        .into_iter()
-        .map(|root| {
-            if root.certified {
-                refine_by_newton(&col, root.lo, root.hi)
-            } else {
-                0.5 * (root.lo + root.hi)
-            }
-        })
+        .iter()
+        .map(|root| root_in(&col, root))
         .collect()
 }
 
+/// The root of `col` in `root`: refined when certified, else the cluster's midpoint.
+fn root_in(col: &Bernstein1, root: &RootInterval) -> f64 {
+    if root.certified {
+        refine_by_newton(col, root.lo, root.hi)
+    } else {
+        0.5 * (root.lo + root.hi)
+    }
+}
+
 /// The `r` of branch `b` at `t` inside its slab (`None` when the root count differs,
-/// which only rounding near a special point causes).
+/// which only rounding near a special point causes). Only the branch's own root is
+/// refined when the count is right.
 pub fn branch_at(f: &Bernstein2, b: &Branch, t: f64) -> Option<f64> {
     if t <= b.slab.0 {
         return b.ends.0;
@@ -52,14 +56,24 @@ pub fn branch_at(f: &Bernstein2, b: &Branch, t: f64) -> Option<f64> {
     if t >= b.slab.1 {
         return b.ends.1;
     }
-    roots_counted(f, t, b.count).map(|roots| roots[b.index])
+    let col = f.restrict(Axis::X, t);
+    let found = isolate(&col, 1e-13);
+    if found.len() == b.count {
+        return Some(root_in(&col, &found[b.index]));
+    }
+    let roots: Vec<f64> = found.iter().map(|root| root_in(&col, root)).collect();
+    counted(roots, b.count).map(|roots| roots[b.index])
 }
 
-/// The roots of `F3(t, ·)` when there are `count` of them. A root just outside the
-/// square (near a singular corner) can show as an uncertified cluster at a side: those
-/// are dropped before giving up.
+/// The roots of `F3(t, ·)` when there are `count` of them.
 fn roots_counted(f: &Bernstein2, t: f64, count: usize) -> Option<Vec<f64>> {
-    let mut roots = roots_at(f, t);
+    counted(roots_at(f, t), count)
+}
+
+/// `roots` when there are `count` of them. A root just outside the square (near a
+/// singular corner) can show as an uncertified cluster at a side: those are dropped
+/// before giving up.
+fn counted(mut roots: Vec<f64>, count: usize) -> Option<Vec<f64>> {
     if roots.len() != count {
         roots.retain(|&r| r > 1e-7 && r < 1.0 - 1e-7);
     }
@@ -124,12 +138,7 @@ pub fn branches(
     for at in [0, 1] {
         let side = f.edge(Axis::Y, at);
         for root in isolate(&side, 1e-13) {
-            let t = if root.certified {
-                refine_by_newton(&side, root.lo, root.hi)
-            } else {
-                0.5 * (root.lo + root.hi)
-            };
-            special.push(Point::new(t, at as f64));
+            special.push(Point::new(root_in(&side, &root), at as f64));
         }
     }
     // turning points

@@ -717,8 +717,32 @@ impl Bernstein1 {
 
     /// de Casteljau at `t ∈ [0,1]`: the forms over `[0, t]` and `[t, 1]`.
     pub fn split(&self, t: f64) -> (Self, Self) {
-        let (l, r) = self.view().split(0, t);
-        (Self::from_form(l), Self::from_form(r))
+        let (mut lower, mut upper) = (Self::exact(Vec::new()), Self::exact(Vec::new()));
+        self.split_into(t, &mut lower, &mut upper);
+        (lower, upper)
+    }
+
+    /// [`Self::split`] into `lower` and `upper`, reusing their allocations: each level
+    /// is a convex combination (rounding ≤ 2.5 ε·max|b|), so `err` grows by
+    /// `4·n·ε·(max|b| + err)`.
+    pub fn split_into(&self, t: f64, lower: &mut Self, upper: &mut Self) {
+        debug_assert!(
+            (0.0..=1.0).contains(&t),
+            "split parameter {t} outside [0, 1]"
+        );
+        for part in [&mut *lower, &mut *upper] {
+            part.coef.clear();
+            part.coef.extend_from_slice(&self.coef);
+        }
+        let n = self.degree();
+        let err = if n > 0 {
+            split_lines(&mut lower.coef, &mut upper.coef, n + 1, t);
+            grown(self.err, max_abs(&self.coef), 4.0 * n as f64)
+        } else {
+            self.err
+        };
+        lower.err = err;
+        upper.err = err;
     }
 
     /// A certified enclosure of the exact polynomial over `[0, 1]`.

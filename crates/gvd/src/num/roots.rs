@@ -88,6 +88,22 @@ struct Piece {
     hi: u64,
 }
 
+/// The forms of the pieces done with, whose allocations the next splits reuse.
+#[derive(Default)]
+struct Spare(Vec<Bernstein1>);
+
+impl Spare {
+    fn take(&mut self) -> Bernstein1 {
+        self.0
+            .pop()
+            .unwrap_or_else(|| Bernstein1::exact(Vec::new()))
+    }
+
+    fn keep(&mut self, p: Piece) {
+        self.0.push(p.f);
+    }
+}
+
 impl Piece {
     fn whole(b: &Bernstein1) -> Self {
         Piece {
@@ -100,25 +116,28 @@ impl Piece {
     /// Splits at the midpoint, or at `3/8` / `5/8` of the piece when the value at the
     /// midpoint is within `err` of zero (a root there could never be certified), as long
     /// as the ends stay exact. `None` when the piece is too short to split exactly.
-    fn split(&self) -> Option<(Piece, Piece)> {
+    fn split(&self, spare: &mut Spare) -> Option<(Piece, Piece)> {
         let len = self.hi - self.lo;
         if len & 1 != 0 {
             return None;
         }
         let near_zero = |r: &Bernstein1| r.coef[0].abs() <= r.err;
-        let mut halves = self.f.split(0.5);
+        let (mut l, mut r) = (spare.take(), spare.take());
+        self.f.split_into(0.5, &mut l, &mut r);
         let mut at = self.lo + len / 2;
-        if near_zero(&halves.1) && len & 7 == 0 {
+        if near_zero(&r) && len & 7 == 0 {
+            let (mut l2, mut r2) = (spare.take(), spare.take());
             for k in [3, 5] {
-                let parts = self.f.split(k as f64 / 8.0);
-                if !near_zero(&parts.1) {
-                    halves = parts;
+                self.f.split_into(k as f64 / 8.0, &mut l2, &mut r2);
+                if !near_zero(&r2) {
+                    std::mem::swap(&mut l, &mut l2);
+                    std::mem::swap(&mut r, &mut r2);
                     at = self.lo + len / 8 * k;
                     break;
                 }
             }
+            spare.0.extend([l2, r2]);
         }
-        let (l, r) = halves;
         Some((
             Piece {
                 f: l,
@@ -166,6 +185,7 @@ pub fn isolate(b: &Bernstein1, min_width: f64) -> Vec<RootInterval> {
     };
     // depth-first, left piece on top: pieces come off the stack left to right
     let mut stack = vec![Piece::whole(b)];
+    let mut spare = Spare::default();
     let mut pieces = 0;
     while let Some(p) = stack.pop() {
         pieces += 1;
@@ -177,14 +197,16 @@ pub fn isolate(b: &Bernstein1, min_width: f64) -> Vec<RootInterval> {
             Verdict::Excluded => {}
             Verdict::One => emit(p.lo, p.hi, true),
             Verdict::Flat => emit(p.lo, p.hi, false),
-            Verdict::Unknown => match p.split() {
-                Some((l, r)) if p.hi - p.lo > min_len => {
+            Verdict::Unknown if p.hi - p.lo <= min_len => emit(p.lo, p.hi, false),
+            Verdict::Unknown => match p.split(&mut spare) {
+                Some((l, r)) => {
                     stack.push(r);
                     stack.push(l);
                 }
-                _ => emit(p.lo, p.hi, false),
+                None => emit(p.lo, p.hi, false),
             },
         }
+        spare.keep(p);
     }
     out.into_iter()
         .map(|(lo, hi, certified)| RootInterval {
@@ -211,6 +233,7 @@ pub fn last_root(b: &Bernstein1, min_width: f64) -> Option<f64> {
 fn extreme_root(b: &Bernstein1, min_width: f64, from_right: bool) -> Option<f64> {
     let min_len = min_units(min_width);
     let mut stack = vec![Piece::whole(b)];
+    let mut spare = Spare::default();
     let mut pieces = 0;
     let end = |p: &Piece| {
         if from_right {
@@ -222,10 +245,10 @@ fn extreme_root(b: &Bernstein1, min_width: f64, from_right: bool) -> Option<f64>
     while let Some(p) = stack.pop() {
         pieces += 1;
         match classify(&p.f) {
-            Verdict::Excluded => continue,
+            Verdict::Excluded => {}
             Verdict::Flat => return Some(end(&p)),
             _ if pieces > MAX_PIECES || p.hi - p.lo <= min_len => return Some(end(&p)),
-            _ => match p.split() {
+            _ => match p.split(&mut spare) {
                 Some((l, r)) => {
                     let (near, far) = if from_right { (r, l) } else { (l, r) };
                     stack.push(far);
@@ -234,6 +257,7 @@ fn extreme_root(b: &Bernstein1, min_width: f64, from_right: bool) -> Option<f64>
                 None => return Some(end(&p)),
             },
         }
+        spare.keep(p);
     }
     None
 }

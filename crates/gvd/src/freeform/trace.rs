@@ -10,7 +10,7 @@
 
 use crate::geom::{Aabb, Axis, Point};
 use crate::num::bernstein::{Bernstein1, Bernstein2};
-use crate::num::roots::{isolate, refine_by_newton, solve_system, RootInterval, SystemOptions};
+use crate::num::roots::{isolate, refine_by_newton, solve_systems, RootInterval, SystemOptions};
 
 /// Special points closer than this in `t` share a slab side.
 const SAME_T: f64 = 1e-10;
@@ -156,26 +156,32 @@ pub fn branches(
     } else {
         (1e-5, 1 << 10)
     };
-    for axis in [0, 1] {
-        let g = poly.partial(axis);
-        // F3's form is known to within its error bound, its partial derivatives (in
-        // the square's coordinates, differences of neighbouring coefficients times the
-        // degree) to within 2n times it
-        let opts = SystemOptions {
-            min_size,
-            max_boxes,
-            noise: Some([f.err, 2.0 * f.deg[axis] as f64 * f.err]),
-            units,
-        };
-        for d in &domains {
-            for root in solve_system(&poly, &g, &[], d, &opts) {
+    // the turning points in t and in r, in one subdivision: F3's form over [0, 1]² is
+    // known to within its error bound, its partial derivatives (in the square's
+    // coordinates, differences of neighbouring coefficients times the degree) to within
+    // 2n times it
+    let partials = [poly.partial(0), poly.partial(1)];
+    let opts = [0, 1].map(|axis| SystemOptions {
+        min_size,
+        max_boxes,
+        noise: Some([f.err, 2.0 * f.deg[axis] as f64 * f.err]),
+        units,
+    });
+    let mut turning: [Vec<Point>; 2] = Default::default();
+    for d in &domains {
+        for (found, roots) in turning
+            .iter_mut()
+            .zip(solve_systems(&poly, &partials, &[], d, &opts))
+        {
+            for root in roots {
                 if !root.certified {
                     stats.uncertified += 1;
                 }
-                special.push(root.point);
+                found.push(root.point);
             }
         }
     }
+    special.extend(turning.into_iter().flatten());
     stats.special += special.len();
     let mut cuts: Vec<f64> = special.iter().map(|p| p.x.clamp(0.0, 1.0)).collect();
     cuts.push(0.0);

@@ -1147,6 +1147,36 @@ mod system_tests {
     }
 
     #[test]
+    fn systems_sharing_f_get_the_answers_of_separate_calls() {
+        // a curve's turning points in x and in y, and the nodal cubic's with a noise
+        // floor and a small budget (uncertified clusters too)
+        let cases = [
+            ("x^2/4 + y^2 - 1", [-3.0, -3.0, 3.0, 3.0], None, 1 << 16),
+            (
+                "y^2 - x^2*(x + 1)",
+                [-2.0, -2.0, 2.0, 2.0],
+                Some([1e-9, 1e-8]),
+                300,
+            ),
+        ];
+        for (f, d, noise, max_boxes) in cases {
+            let (f, domain) = (poly(f), Aabb::from_array(d));
+            let gs = [f.partial(0), f.partial(1)];
+            let opts = [1.0, 2.0].map(|k| SystemOptions {
+                noise: noise.map(|[a, b]| [a, k * b]),
+                max_boxes,
+                units: [1.0, 3.0],
+                ..SystemOptions::for_domain(&domain)
+            });
+            let together = solve_systems(&f, &gs, &[], &domain, &opts);
+            for ((g, o), found) in gs.iter().zip(&opts).zip(&together) {
+                assert_eq!(found, &solve_system(&f, g, &[], &domain, o));
+                assert!(!found.is_empty());
+            }
+        }
+    }
+
+    #[test]
     fn tangency_is_an_uncertified_cluster() {
         // the line y = 1 touches the unit circle at (0, 1): a double root
         let roots = solve("x^2 + y^2 - 1", "y - 1", [-2.0, -2.0, 2.0, 2.0]);

@@ -27,6 +27,22 @@ fn outside_unless_above(b: &Aabb, q: Point, bound: f64) -> Option<f64> {
     Some(b.outside_distance(q))
 }
 
+/// The least squared distance from `q` to `pts` (`∞` for none; NaNs skipped, as by
+/// `f64::min`), in four independent lanes: a plain comparison per sample instead of
+/// `f64::min`'s NaN handling, the same least value (a minimum does not round).
+fn least_dist2(q: Point, pts: &[Point]) -> f64 {
+    let less = |m: f64, d: f64| if d < m { d } else { m };
+    let mut lanes = [f64::INFINITY; 4];
+    let mut chunks = pts.chunks_exact(4);
+    for chunk in &mut chunks {
+        for (m, p) in lanes.iter_mut().zip(chunk) {
+            *m = less(*m, p.dist2(q));
+        }
+    }
+    let rest = chunks.remainder().iter().map(|p| p.dist2(q));
+    lanes.into_iter().chain(rest).fold(f64::INFINITY, less)
+}
+
 /// The candidate pairs (each once, first < second), excluding pairs that never bound an
 /// edge: two features of one site in `voronoi` mode, a corner and the spans that end at
 /// it.
@@ -56,12 +72,7 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
     let rho = 0.5 * dx.hypot(dy);
     let join = JOIN * domain.longest_side();
     // the nearest sample by squared distance, one square root (no `hypot` per sample)
-    let dist = |q: Point, pts: &[Point]| {
-        pts.iter()
-            .map(|p| p.dist2(q))
-            .fold(f64::INFINITY, f64::min)
-            .sqrt()
-    };
+    let dist = |q: Point, pts: &[Point]| least_dist2(q, pts).sqrt();
     let mut out: BTreeSet<[Feature; 2]> = BTreeSet::new();
     let mut near: Vec<usize> = Vec::new();
     // per feature at the current grid point: (distance to its box unless above the

@@ -188,15 +188,11 @@ pub fn branches(
     cuts.push(1.0);
     cuts.sort_by(f64::total_cmp);
     cuts.dedup_by(|a, b| (*a - *b).abs() < SAME_T);
-    let mut out = Vec::new();
-    for w in cuts.windows(2) {
-        let (t0, t1) = (w[0], w[1]);
-        if t1 - t0 < SAME_T {
-            continue;
-        }
-        let mid = roots_at(f, 0.5 * (t0 + t1));
-        let count = mid.len();
-        let side_nodes = |t: f64| {
+    // the nodes on each cut (the side of one or two slabs): the roots there and the
+    // special points on it
+    let nodes: Vec<Vec<f64>> = cuts
+        .iter()
+        .map(|&t| {
             let mut nodes = roots_at(f, t);
             nodes.extend(
                 special
@@ -205,8 +201,17 @@ pub fn branches(
                     .map(|p| p.y),
             );
             nodes
-        };
-        let (n0, n1) = (side_nodes(t0), side_nodes(t1));
+        })
+        .collect();
+    let mut out = Vec::new();
+    for (w, n) in cuts.windows(2).zip(nodes.windows(2)) {
+        let (t0, t1) = (w[0], w[1]);
+        if t1 - t0 < SAME_T {
+            continue;
+        }
+        let mid = roots_at(f, 0.5 * (t0 + t1));
+        let count = mid.len();
+        let (n0, n1) = (&n[0], &n[1]);
         // a branch's end: the node nearest to its root just inside the slab
         let inner = |t: f64| roots_counted(f, t, count);
         let h = 1e-7 * (t1 - t0);
@@ -224,7 +229,7 @@ pub fn branches(
                 slab: (t0, t1),
                 index,
                 count,
-                ends: (pick(&n0, &near0), pick(&n1, &near1)),
+                ends: (pick(n0, &near0), pick(n1, &near1)),
             });
         }
     }

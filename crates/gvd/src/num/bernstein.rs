@@ -595,7 +595,11 @@ fn power_to_bernstein(deg: [usize; 3], c: &mut [Tracked], doms: [Interval; 3]) {
         let lines = outer * inner;
         let at = |i: usize, l: usize| ((l / inner) * (n + 1) + i) * inner + l % inner;
         rows.clear();
-        rows.extend((0..=n).flat_map(|i| (0..lines).map(move |l| (i, l))).map(|(i, l)| c[at(i, l)]));
+        rows.extend(
+            (0..=n)
+                .flat_map(|i| (0..lines).map(move |l| (i, l)))
+                .map(|(i, l)| c[at(i, l)]),
+        );
         if dom.lo != 0.0 {
             for i in 0..n {
                 // row j ← row j + lo · row j+1

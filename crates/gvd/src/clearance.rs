@@ -91,10 +91,14 @@ pub(crate) fn with_feet<R>(scene: &Scene, work: impl FnOnce(&Feet) -> R) -> R {
 
 impl Feet<'_> {
     /// The least of the distances from `q` to `generators` ([`Feet::clearance`]); NaN
-    /// if any is unknown or there are none.
+    /// if any is unknown or there are none. A generator listed twice (the two sides of
+    /// a medial axis edge inside one piece) is measured once.
     pub(crate) fn generators_clearance(&self, generators: &[Generator], q: Point) -> f64 {
         let mut least = f64::NAN;
-        for g in generators {
+        for (k, g) in generators.iter().enumerate() {
+            if generators[..k].contains(g) {
+                continue;
+            }
             let r = self.clearance(g, q);
             if r.is_nan() {
                 return f64::NAN;

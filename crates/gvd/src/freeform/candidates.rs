@@ -16,12 +16,39 @@ const GRID: usize = 96;
 /// Samples per span.
 const SAMPLES: usize = 32;
 
+/// `b.outside_distance(q)`, or `None` when it is certainly above `bound`: its larger
+/// component is, by more than the rounding of `hypot` (spared then).
+fn outside_unless_above(b: &Aabb, q: Point, bound: f64) -> Option<f64> {
+    let dx = (b.min.x - q.x).max(q.x - b.max.x).max(0.0);
+    let dy = (b.min.y - q.y).max(q.y - b.max.y).max(0.0);
+    if dx.max(dy) > bound * (1.0 + 4.0 * f64::EPSILON) {
+        return None;
+    }
+    Some(b.outside_distance(q))
+}
+
+/// The least squared distance from `q` to `pts` (`∞` for none; NaNs skipped, as by
+/// `f64::min`), in four independent lanes: a plain comparison per sample instead of
+/// `f64::min`'s NaN handling, the same least value (a minimum does not round).
+fn least_dist2(q: Point, pts: &[Point]) -> f64 {
+    let less = |m: f64, d: f64| if d < m { d } else { m };
+    let mut lanes = [f64::INFINITY; 4];
+    let mut chunks = pts.chunks_exact(4);
+    for chunk in &mut chunks {
+        for (m, p) in lanes.iter_mut().zip(chunk) {
+            *m = less(*m, p.dist2(q));
+        }
+    }
+    let rest = chunks.remainder().iter().map(|p| p.dist2(q));
+    lanes.into_iter().chain(rest).fold(f64::INFINITY, less)
+}
+
 /// The candidate pairs (each once, first < second), excluding pairs that never bound an
 /// edge: two features of one site in `voronoi` mode, a corner and the spans that end at
 /// it.
 pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
     let pieces = features.pieces;
-    // (feature, samples, half the longest step)
+    // (feature, samples, half the longest step, box)
     let mut sampled: Vec<(Feature, Vec<Point>, f64, Aabb)> = Vec::new();
     for (k, s) in pieces.spans.iter().enumerate() {
         let pts = s.curve.sample(SAMPLES);
@@ -45,17 +72,12 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
     let rho = 0.5 * dx.hypot(dy);
     let join = JOIN * domain.longest_side();
     // the nearest sample by squared distance, one square root (no `hypot` per sample)
-    let dist = |q: Point, pts: &[Point]| {
-        pts.iter()
-            .map(|p| p.dist2(q))
-            .fold(f64::INFINITY, f64::min)
-            .sqrt()
-    };
+    let dist = |q: Point, pts: &[Point]| least_dist2(q, pts).sqrt();
     let mut out: BTreeSet<[Feature; 2]> = BTreeSet::new();
     let mut near: Vec<usize> = Vec::new();
-    // per feature at the current grid point: (distance to its box, sampled distance if
-    // already computed)
-    let mut known: Vec<(f64, Option<f64>)> = Vec::with_capacity(sampled.len());
+    // per feature at the current grid point: (distance to its box unless above the
+    // nearest sample found before it, sampled distance if already computed)
+    let mut known: Vec<(Option<f64>, Option<f64>)> = Vec::with_capacity(sampled.len());
     for i in 0..GRID {
         for j in 0..GRID {
             let q = Point::new(
@@ -65,9 +87,9 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
             known.clear();
             let mut upper = f64::INFINITY;
             for (_, pts, _, b) in &sampled {
-                let outside = b.outside_distance(q);
+                let outside = outside_unless_above(b, q, upper);
                 let mut sampled_distance = None;
-                if outside < upper {
+                if outside.is_some_and(|o| o < upper) {
                     let d = dist(q, pts);
                     sampled_distance = Some(d);
                     upper = upper.min(d);
@@ -76,8 +98,11 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
             }
             near.clear();
             let bound = upper + 2.0 * rho;
-            for (k, ((_, pts, slack, _), &(outside, d))) in sampled.iter().zip(&known).enumerate() {
-                if outside <= bound && d.unwrap_or_else(|| dist(q, pts)) - slack <= bound {
+            for (k, ((_, pts, slack, b), &(outside, d))) in sampled.iter().zip(&known).enumerate() {
+                let outside = outside.or_else(|| outside_unless_above(b, q, bound));
+                if outside.is_some_and(|o| o <= bound)
+                    && d.unwrap_or_else(|| dist(q, pts)) - slack <= bound
+                {
                     near.push(k);
                 }
             }

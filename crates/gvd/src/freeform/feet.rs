@@ -36,7 +36,7 @@ pub(crate) fn with_feet<R>(
         let mut best: Option<(f64, Point)> = None;
         for (k, span) in pieces.spans.iter().enumerate() {
             let wanted = span.site == site && (feature.is_none() || span.piece == index);
-            if !wanted || best.is_some_and(|b| span.bbox.outside_distance(q) >= b.0) {
+            if !wanted || best.is_some_and(|b| features.farther(k, q, b.0)) {
                 continue;
             }
             let (d, t) = features.span_distance(k, q);

@@ -87,6 +87,17 @@ impl<'a> Features<'a> {
         span_distance(&self.pieces.spans[k].curve, &self.forms[k], q)
     }
 
+    /// True when span `k` is certainly no nearer to `q` than `limit`: its box is not, or
+    /// (polynomial spans) its squared distance's lower bound is above `limit²` by a
+    /// margin over the rounding of its distance, so that [`Self::span_distance`] would
+    /// not find it nearer.
+    pub fn farther(&self, k: usize, q: Point, limit: f64) -> bool {
+        self.pieces.spans[k].bbox.outside_distance(q) >= limit
+            || self.squared[k]
+                .as_ref()
+                .is_some_and(|sq| sq.lower_bound(q) >= limit * limit * (1.0 + 1e-12))
+    }
+
     /// The nearest feature to `q` among those closer than `bound` (spans and active
     /// corners), or `None` when nothing is closer than `bound`.
     pub fn nearest_below(&self, q: Point, bound: f64) -> Option<(Feature, f64)> {
@@ -99,16 +110,8 @@ impl<'a> Features<'a> {
                 best = Some((Feature::Corner(k), d));
             }
         }
-        for (k, s) in self.pieces.spans.iter().enumerate() {
-            if s.bbox.outside_distance(q) >= limit {
-                continue;
-            }
-            // a span certainly farther than the limit (by a margin over the rounding of
-            // its distance) is not examined: `span_distance` would not find it nearer
-            if self.squared[k]
-                .as_ref()
-                .is_some_and(|sq| sq.lower_bound(q) >= limit * limit * (1.0 + 1e-12))
-            {
+        for k in 0..self.pieces.spans.len() {
+            if self.farther(k, q, limit) {
                 continue;
             }
             let (d, _) = self.span_distance(k, q);

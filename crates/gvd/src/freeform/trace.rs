@@ -9,8 +9,8 @@
 //! joined to the nearest root (or special point) on the slab's sides.
 
 use crate::geom::{Aabb, Axis, Point};
-use crate::num::bernstein::Bernstein2;
-use crate::num::roots::{isolate, refine_by_newton, solve_system, SystemOptions};
+use crate::num::bernstein::{Bernstein1, Bernstein2};
+use crate::num::roots::{isolate, refine_by_newton, solve_systems, RootInterval, SystemOptions};
 
 /// Special points closer than this in `t` share a slab side.
 const SAME_T: f64 = 1e-10;
@@ -32,19 +32,23 @@ pub struct Branch {
 pub fn roots_at(f: &Bernstein2, t: f64) -> Vec<f64> {
     let col = f.restrict(Axis::X, t);
     isolate(&col, 1e-13)
-        .into_iter()
-        .map(|root| {
-            if root.certified {
-                refine_by_newton(&col, root.lo, root.hi)
-            } else {
-                0.5 * (root.lo + root.hi)
-            }
-        })
+        .iter()
+        .map(|root| root_in(&col, root))
         .collect()
 }
 
+/// The root of `col` in `root`: refined when certified, else the cluster's midpoint.
+fn root_in(col: &Bernstein1, root: &RootInterval) -> f64 {
+    if root.certified {
+        refine_by_newton(col, root.lo, root.hi)
+    } else {
+        0.5 * (root.lo + root.hi)
+    }
+}
+
 /// The `r` of branch `b` at `t` inside its slab (`None` when the root count differs,
-/// which only rounding near a special point causes).
+/// which only rounding near a special point causes). Only the branch's own root is
+/// refined when the count is right.
 pub fn branch_at(f: &Bernstein2, b: &Branch, t: f64) -> Option<f64> {
     if t <= b.slab.0 {
         return b.ends.0;
@@ -52,14 +56,24 @@ pub fn branch_at(f: &Bernstein2, b: &Branch, t: f64) -> Option<f64> {
     if t >= b.slab.1 {
         return b.ends.1;
     }
-    roots_counted(f, t, b.count).map(|roots| roots[b.index])
+    let col = f.restrict(Axis::X, t);
+    let found = isolate(&col, 1e-13);
+    if found.len() == b.count {
+        return Some(root_in(&col, &found[b.index]));
+    }
+    let roots: Vec<f64> = found.iter().map(|root| root_in(&col, root)).collect();
+    counted(roots, b.count).map(|roots| roots[b.index])
 }
 
-/// The roots of `F3(t, ·)` when there are `count` of them. A root just outside the
-/// square (near a singular corner) can show as an uncertified cluster at a side: those
-/// are dropped before giving up.
+/// The roots of `F3(t, ·)` when there are `count` of them.
 fn roots_counted(f: &Bernstein2, t: f64, count: usize) -> Option<Vec<f64>> {
-    let mut roots = roots_at(f, t);
+    counted(roots_at(f, t), count)
+}
+
+/// `roots` when there are `count` of them. A root just outside the square (near a
+/// singular corner) can show as an uncertified cluster at a side: those are dropped
+/// before giving up.
+fn counted(mut roots: Vec<f64>, count: usize) -> Option<Vec<f64>> {
     if roots.len() != count {
         roots.retain(|&r| r > 1e-7 && r < 1.0 - 1e-7);
     }
@@ -124,12 +138,7 @@ pub fn branches(
     for at in [0, 1] {
         let side = f.edge(Axis::Y, at);
         for root in isolate(&side, 1e-13) {
-            let t = if root.certified {
-                refine_by_newton(&side, root.lo, root.hi)
-            } else {
-                0.5 * (root.lo + root.hi)
-            };
-            special.push(Point::new(t, at as f64));
+            special.push(Point::new(root_in(&side, &root), at as f64));
         }
     }
     // turning points
@@ -147,41 +156,43 @@ pub fn branches(
     } else {
         (1e-5, 1 << 10)
     };
-    for axis in [0, 1] {
-        let g = poly.partial(axis);
-        // F3's form is known to within its error bound, its partial derivatives (in
-        // the square's coordinates, differences of neighbouring coefficients times the
-        // degree) to within 2n times it
-        let opts = SystemOptions {
-            min_size,
-            max_boxes,
-            noise: Some([f.err, 2.0 * f.deg[axis] as f64 * f.err]),
-            units,
-        };
-        for d in &domains {
-            for root in solve_system(&poly, &g, &[], d, &opts) {
+    // the turning points in t and in r, in one subdivision: F3's form over [0, 1]² is
+    // known to within its error bound, its partial derivatives (in the square's
+    // coordinates, differences of neighbouring coefficients times the degree) to within
+    // 2n times it
+    let partials = [poly.partial(0), poly.partial(1)];
+    let opts = [0, 1].map(|axis| SystemOptions {
+        min_size,
+        max_boxes,
+        noise: Some([f.err, 2.0 * f.deg[axis] as f64 * f.err]),
+        units,
+    });
+    let mut turning: [Vec<Point>; 2] = Default::default();
+    for d in &domains {
+        for (found, roots) in turning
+            .iter_mut()
+            .zip(solve_systems(&poly, &partials, &[], d, &opts))
+        {
+            for root in roots {
                 if !root.certified {
                     stats.uncertified += 1;
                 }
-                special.push(root.point);
+                found.push(root.point);
             }
         }
     }
+    special.extend(turning.into_iter().flatten());
     stats.special += special.len();
     let mut cuts: Vec<f64> = special.iter().map(|p| p.x.clamp(0.0, 1.0)).collect();
     cuts.push(0.0);
     cuts.push(1.0);
     cuts.sort_by(f64::total_cmp);
     cuts.dedup_by(|a, b| (*a - *b).abs() < SAME_T);
-    let mut out = Vec::new();
-    for w in cuts.windows(2) {
-        let (t0, t1) = (w[0], w[1]);
-        if t1 - t0 < SAME_T {
-            continue;
-        }
-        let mid = roots_at(f, 0.5 * (t0 + t1));
-        let count = mid.len();
-        let side_nodes = |t: f64| {
+    // the nodes on each cut (the side of one or two slabs): the roots there and the
+    // special points on it
+    let nodes: Vec<Vec<f64>> = cuts
+        .iter()
+        .map(|&t| {
             let mut nodes = roots_at(f, t);
             nodes.extend(
                 special
@@ -190,8 +201,17 @@ pub fn branches(
                     .map(|p| p.y),
             );
             nodes
-        };
-        let (n0, n1) = (side_nodes(t0), side_nodes(t1));
+        })
+        .collect();
+    let mut out = Vec::new();
+    for (w, n) in cuts.windows(2).zip(nodes.windows(2)) {
+        let (t0, t1) = (w[0], w[1]);
+        if t1 - t0 < SAME_T {
+            continue;
+        }
+        let mid = roots_at(f, 0.5 * (t0 + t1));
+        let count = mid.len();
+        let (n0, n1) = (&n[0], &n[1]);
         // a branch's end: the node nearest to its root just inside the slab
         let inner = |t: f64| roots_counted(f, t, count);
         let h = 1e-7 * (t1 - t0);
@@ -209,7 +229,7 @@ pub fn branches(
                 slab: (t0, t1),
                 index,
                 count,
-                ends: (pick(&n0, &near0), pick(&n1, &near1)),
+                ends: (pick(n0, &near0), pick(n1, &near1)),
             });
         }
     }

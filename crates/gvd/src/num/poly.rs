@@ -42,6 +42,9 @@ const MAX_PRODUCT_WORK: usize = 60_000_000;
 const MAX_DEPTH: usize = 200;
 
 const VAR_NAMES: [char; 3] = ['x', 'y', 'z'];
+/// The highest degree per variable up to which [`Poly::eval`] and [`Poly::eval_interval`]
+/// tabulate the powers of the point once (above it, each term takes its own powers).
+const TABULATED: usize = 32;
 
 impl Poly {
     /// The zero polynomial.
@@ -107,22 +110,60 @@ impl Poly {
         Ok(poly)
     }
 
-    /// `p(x, y, z)` in f64, summing `c · x^i y^j z^k` term by term.
+    /// `p(x, y, z)` in f64, summing `c · x^i y^j z^k` term by term (the powers looked up
+    /// in a table made once per call, up to degree [`TABULATED`]).
     pub fn eval(&self, x: f64, y: f64, z: f64) -> f64 {
-        self.terms
-            .iter()
-            .map(|&(e, c)| c * powu(x, e[0]) * powu(y, e[1]) * powu(z, e[2]))
-            .sum()
+        match self.power_tables([x, y, z], powu) {
+            Some([px, py, pz]) => self
+                .terms
+                .iter()
+                .map(|&(e, c)| c * px[e[0] as usize] * py[e[1] as usize] * pz[e[2] as usize])
+                .sum(),
+            None => self
+                .terms
+                .iter()
+                .map(|&(e, c)| c * powu(x, e[0]) * powu(y, e[1]) * powu(z, e[2]))
+                .sum(),
+        }
     }
 
     /// A rigorous enclosure of `p` over the box `x × y × z` (outward-rounded).
     pub fn eval_interval(&self, x: Interval, y: Interval, z: Interval) -> Interval {
+        let tables = self.power_tables([x, y, z], Interval::powi);
         let mut acc = Interval::point(0.0);
         for &(e, c) in &self.terms {
-            let m = x.powi(e[0]) * y.powi(e[1]) * z.powi(e[2]);
+            let m = match &tables {
+                Some([px, py, pz]) => px[e[0] as usize] * py[e[1] as usize] * pz[e[2] as usize],
+                None => x.powi(e[0]) * y.powi(e[1]) * z.powi(e[2]),
+            };
             acc = acc + m * Interval::point(c);
         }
         acc
+    }
+
+    /// Per variable, `pow(v, k)` for `k` up to its degree, or `None` when a degree is
+    /// above [`TABULATED`].
+    fn power_tables<T: Copy + Default>(
+        &self,
+        at: [T; 3],
+        pow: impl Fn(T, u32) -> T,
+    ) -> Option<[[T; TABULATED + 1]; 3]> {
+        let mut deg = [0u32; 3];
+        for (e, _) in &self.terms {
+            for (d, &k) in deg.iter_mut().zip(e) {
+                *d = (*d).max(k);
+            }
+        }
+        if deg.iter().any(|&d| d as usize > TABULATED) {
+            return None;
+        }
+        let mut tables = [[T::default(); TABULATED + 1]; 3];
+        for ((table, &d), &v) in tables.iter_mut().zip(&deg).zip(&at) {
+            for (k, slot) in table.iter_mut().enumerate().take(d as usize + 1) {
+                *slot = pow(v, k as u32);
+            }
+        }
+        Some(tables)
     }
 
     /// The largest exponent of variable `var` (0 = x, 1 = y, 2 = z).

@@ -88,6 +88,22 @@ struct Piece {
     hi: u64,
 }
 
+/// The forms of the pieces done with, whose allocations the next splits reuse.
+#[derive(Default)]
+struct Spare(Vec<Bernstein1>);
+
+impl Spare {
+    fn take(&mut self) -> Bernstein1 {
+        self.0
+            .pop()
+            .unwrap_or_else(|| Bernstein1::exact(Vec::new()))
+    }
+
+    fn keep(&mut self, p: Piece) {
+        self.0.push(p.f);
+    }
+}
+
 impl Piece {
     fn whole(b: &Bernstein1) -> Self {
         Piece {
@@ -100,25 +116,28 @@ impl Piece {
     /// Splits at the midpoint, or at `3/8` / `5/8` of the piece when the value at the
     /// midpoint is within `err` of zero (a root there could never be certified), as long
     /// as the ends stay exact. `None` when the piece is too short to split exactly.
-    fn split(&self) -> Option<(Piece, Piece)> {
+    fn split(&self, spare: &mut Spare) -> Option<(Piece, Piece)> {
         let len = self.hi - self.lo;
         if len & 1 != 0 {
             return None;
         }
         let near_zero = |r: &Bernstein1| r.coef[0].abs() <= r.err;
-        let mut halves = self.f.split(0.5);
+        let (mut l, mut r) = (spare.take(), spare.take());
+        self.f.split_into(0.5, &mut l, &mut r);
         let mut at = self.lo + len / 2;
-        if near_zero(&halves.1) && len & 7 == 0 {
+        if near_zero(&r) && len & 7 == 0 {
+            let (mut l2, mut r2) = (spare.take(), spare.take());
             for k in [3, 5] {
-                let parts = self.f.split(k as f64 / 8.0);
-                if !near_zero(&parts.1) {
-                    halves = parts;
+                self.f.split_into(k as f64 / 8.0, &mut l2, &mut r2);
+                if !near_zero(&r2) {
+                    std::mem::swap(&mut l, &mut l2);
+                    std::mem::swap(&mut r, &mut r2);
                     at = self.lo + len / 8 * k;
                     break;
                 }
             }
+            spare.0.extend([l2, r2]);
         }
-        let (l, r) = halves;
         Some((
             Piece {
                 f: l,
@@ -166,6 +185,7 @@ pub fn isolate(b: &Bernstein1, min_width: f64) -> Vec<RootInterval> {
     };
     // depth-first, left piece on top: pieces come off the stack left to right
     let mut stack = vec![Piece::whole(b)];
+    let mut spare = Spare::default();
     let mut pieces = 0;
     while let Some(p) = stack.pop() {
         pieces += 1;
@@ -177,14 +197,16 @@ pub fn isolate(b: &Bernstein1, min_width: f64) -> Vec<RootInterval> {
             Verdict::Excluded => {}
             Verdict::One => emit(p.lo, p.hi, true),
             Verdict::Flat => emit(p.lo, p.hi, false),
-            Verdict::Unknown => match p.split() {
-                Some((l, r)) if p.hi - p.lo > min_len => {
+            Verdict::Unknown if p.hi - p.lo <= min_len => emit(p.lo, p.hi, false),
+            Verdict::Unknown => match p.split(&mut spare) {
+                Some((l, r)) => {
                     stack.push(r);
                     stack.push(l);
                 }
-                _ => emit(p.lo, p.hi, false),
+                None => emit(p.lo, p.hi, false),
             },
         }
+        spare.keep(p);
     }
     out.into_iter()
         .map(|(lo, hi, certified)| RootInterval {
@@ -211,6 +233,7 @@ pub fn last_root(b: &Bernstein1, min_width: f64) -> Option<f64> {
 fn extreme_root(b: &Bernstein1, min_width: f64, from_right: bool) -> Option<f64> {
     let min_len = min_units(min_width);
     let mut stack = vec![Piece::whole(b)];
+    let mut spare = Spare::default();
     let mut pieces = 0;
     let end = |p: &Piece| {
         if from_right {
@@ -222,10 +245,10 @@ fn extreme_root(b: &Bernstein1, min_width: f64, from_right: bool) -> Option<f64>
     while let Some(p) = stack.pop() {
         pieces += 1;
         match classify(&p.f) {
-            Verdict::Excluded => continue,
+            Verdict::Excluded => {}
             Verdict::Flat => return Some(end(&p)),
             _ if pieces > MAX_PIECES || p.hi - p.lo <= min_len => return Some(end(&p)),
-            _ => match p.split() {
+            _ => match p.split(&mut spare) {
                 Some((l, r)) => {
                     let (near, far) = if from_right { (r, l) } else { (l, r) };
                     stack.push(far);
@@ -234,6 +257,7 @@ fn extreme_root(b: &Bernstein1, min_width: f64, from_right: bool) -> Option<f64>
                 None => return Some(end(&p)),
             },
         }
+        spare.keep(p);
     }
     None
 }
@@ -378,10 +402,23 @@ pub struct SystemRoot {
     pub point: Point,
 }
 
-/// The box `b` with the Bernstein forms of the system (and of the side conditions).
+/// A box of [`solve_systems`]: the forms over `b` of `f` and the side conditions, and
+/// per system the form of its `g` (`None` once that system is done with the box).
 struct SystemBox {
     b: Aabb,
-    forms: Vec<Bernstein2>,
+    shared: Vec<Bernstein2>,
+    own: Vec<Option<Bernstein2>>,
+}
+
+/// One system `f = g = 0` of [`solve_systems`]: its `g`, Jacobian and findings.
+struct Run<'a> {
+    g: &'a Poly,
+    opts: SystemOptions,
+    jacobian: [Poly; 4],
+    /// (uniqueness region, enclosure K, refined point)
+    certified: Vec<(Aabb, Aabb, Point)>,
+    unresolved: Vec<Aabb>,
+    boxes: usize,
 }
 
 /// Solves `f = g = 0` in `domain`, with optional `side` conditions (polynomials that
@@ -415,56 +452,73 @@ pub fn solve_system(
     domain: &Aabb,
     opts: &SystemOptions,
 ) -> Vec<SystemRoot> {
-    let system = [f, g];
-    let jacobian = [f.partial(0), f.partial(1), g.partial(0), g.partial(1)];
-    let polys: Vec<&Poly> = system.iter().copied().chain(side.iter()).collect();
-    let make = |b: Aabb| SystemBox {
-        forms: polys.iter().map(|p| Bernstein2::from_poly(p, &b)).collect(),
+    solve_systems(
+        f,
+        std::slice::from_ref(g),
+        side,
+        domain,
+        std::slice::from_ref(opts),
+    )
+    .pop()
+    .unwrap_or_default()
+}
+
+/// [`solve_system`] for `f = g = 0` with each `g` of `gs` and its options in `opts`, in
+/// one subdivision: the forms of `f` and of the side conditions are split once for all
+/// the systems (and `f`'s over a box's Krawczyk region converted once), each system
+/// following its own boxes in the same order, so that every answer is the one
+/// [`solve_system`] gives. The systems' boxes are split alike: their options must have
+/// the same [`SystemOptions::units`].
+pub fn solve_systems(
+    f: &Poly,
+    gs: &[Poly],
+    side: &[Poly],
+    domain: &Aabb,
+    opts: &[SystemOptions],
+) -> Vec<Vec<SystemRoot>> {
+    assert_eq!(gs.len(), opts.len(), "one set of options per system");
+    let Some(first) = opts.first() else {
+        return Vec::new();
+    };
+    assert!(
+        opts.iter().all(|o| o.units == first.units),
+        "the systems must split their boxes alike"
+    );
+    let (fx, fy) = (f.partial(0), f.partial(1));
+    let mut runs: Vec<Run> = gs
+        .iter()
+        .zip(opts)
+        .map(|(g, &opts)| Run {
+            g,
+            opts,
+            jacobian: [fx.clone(), fy.clone(), g.partial(0), g.partial(1)],
+            certified: Vec::new(),
+            unresolved: Vec::new(),
+            boxes: 0,
+        })
+        .collect();
+    let shared: Vec<&Poly> = std::iter::once(f).chain(side).collect();
+    let make = |b: Aabb, live: &[bool]| SystemBox {
+        shared: shared
+            .iter()
+            .map(|p| Bernstein2::from_poly(p, &b))
+            .collect(),
+        own: gs
+            .iter()
+            .zip(live)
+            .map(|(g, &l)| l.then(|| Bernstein2::from_poly(g, &b)))
+            .collect(),
         b,
     };
-    // certified: (uniqueness region, enclosure K, refined point)
-    let mut certified: Vec<(Aabb, Aabb, Point)> = Vec::new();
-    let mut unresolved: Vec<Aabb> = Vec::new();
-    let mut stack = vec![make(*domain)];
-    let mut boxes = 0;
-    let units = if opts.units.iter().all(|u| u.is_finite() && *u > 0.0) {
-        opts.units
+    let units = if first.units.iter().all(|u| u.is_finite() && *u > 0.0) {
+        first.units
     } else {
         [1.0, 1.0]
     };
+    let mut stack = vec![make(*domain, &vec![true; gs.len()])];
+    let mut split_for = vec![false; gs.len()];
     while let Some(sb) = stack.pop() {
-        boxes += 1;
-        if sb.forms.iter().any(|form| form.range().excludes_zero()) {
-            continue;
-        }
-        if boxes > opts.max_boxes || below_noise(&sb.forms, opts.noise) {
-            unresolved.push(sb.b);
-            continue;
-        }
-        let outcome = if may_contract(&sb) {
-            krawczyk(system, &jacobian, &inflate(&sb.b, 0.25))
-        } else {
-            Krawczyk::Unknown
-        };
-        match outcome {
-            Krawczyk::Unique { region, enclosure } => {
-                let enclosure = contract(system, &jacobian, enclosure);
-                let excluded = polys[2..]
-                    .iter()
-                    .any(|p| Bernstein2::from_poly(p, &enclosure).range().excludes_zero());
-                if !excluded && enclosure.intersection(&sb.b).is_some() {
-                    let p = newton_refine(system, &jacobian, &enclosure);
-                    certified.push((region, enclosure, p));
-                }
-                continue;
-            }
-            Krawczyk::NoRoot => continue,
-            Krawczyk::Unknown => {}
-        }
-        if sb.b.longest_side() <= opts.min_size {
-            unresolved.push(sb.b);
-            continue;
-        }
+        let excluded = sb.shared.iter().any(|form| form.range().excludes_zero());
         let axis = if sb.b.width() * units[0] >= sb.b.height() * units[1] {
             Axis::X
         } else {
@@ -475,47 +529,112 @@ pub fn solve_system(
             Axis::Y => (sb.b.min.y, sb.b.max.y),
         };
         let at = 0.5 * (ends.0 + ends.1);
-        if !(ends.0 < at && at < ends.1) {
-            unresolved.push(sb.b); // no room left in f64
+        let x = inflate(&sb.b, 0.25);
+        // `f`'s form over `x`, converted at most once for all the systems
+        let mut f_over_x: Option<Bernstein2> = None;
+        for ((run, own), split) in runs.iter_mut().zip(&sb.own).zip(&mut split_for) {
+            *split = false;
+            let Some(g_form) = own else { continue };
+            run.boxes += 1;
+            if excluded || g_form.range().excludes_zero() {
+                continue;
+            }
+            let forms = [&sb.shared[0], g_form];
+            if run.boxes > run.opts.max_boxes || below_noise(forms, run.opts.noise) {
+                run.unresolved.push(sb.b);
+                continue;
+            }
+            let system = [f, run.g];
+            let outcome = if may_contract(forms, &sb.b) {
+                krawczyk(system, &run.jacobian, &x, &mut f_over_x)
+            } else {
+                Krawczyk::Unknown
+            };
+            match outcome {
+                Krawczyk::Unique { region, enclosure } => {
+                    let enclosure = contract(system, &run.jacobian, enclosure);
+                    let excluded = side
+                        .iter()
+                        .any(|p| Bernstein2::from_poly(p, &enclosure).range().excludes_zero());
+                    if !excluded && enclosure.intersection(&sb.b).is_some() {
+                        let p = newton_refine(system, &run.jacobian, &enclosure);
+                        run.certified.push((region, enclosure, p));
+                    }
+                    continue;
+                }
+                Krawczyk::NoRoot => continue,
+                Krawczyk::Unknown => {}
+            }
+            if sb.b.longest_side() <= run.opts.min_size || !(ends.0 < at && at < ends.1) {
+                // too small, or no room left in f64
+                run.unresolved.push(sb.b);
+                continue;
+            }
+            *split = true;
+        }
+        if !split_for.contains(&true) {
             continue;
         }
         let (lo, hi) = sb.b.split(axis, at);
         if exact_midpoint(ends.0, ends.1) {
-            let (l, h): (Vec<_>, Vec<_>) = sb.forms.iter().map(|f| f.split(axis, 0.5)).unzip();
-            stack.push(SystemBox { b: hi, forms: h });
-            stack.push(SystemBox { b: lo, forms: l });
+            let (l, h): (Vec<_>, Vec<_>) = sb.shared.iter().map(|f| f.split(axis, 0.5)).unzip();
+            let (mut own_l, mut own_h) = (Vec::new(), Vec::new());
+            for (own, &split) in sb.own.iter().zip(&split_for) {
+                let halves = own.as_ref().filter(|_| split).map(|g| g.split(axis, 0.5));
+                let (gl, gh) = halves.unzip();
+                own_l.push(gl);
+                own_h.push(gh);
+            }
+            stack.push(SystemBox {
+                b: hi,
+                shared: h,
+                own: own_h,
+            });
+            stack.push(SystemBox {
+                b: lo,
+                shared: l,
+                own: own_l,
+            });
         } else {
-            stack.push(make(hi));
-            stack.push(make(lo));
+            stack.push(make(hi, &split_for));
+            stack.push(make(lo, &split_for));
         }
     }
-    let mut out: Vec<SystemRoot> = Vec::new();
-    for (k, &(_, enclosure, point)) in certified.iter().enumerate() {
-        let duplicate = certified[..k].iter().any(|(region, e, p)| {
-            region.contains_box(&enclosure) || (e.contains(point) && enclosure.contains(*p))
-        });
-        if !duplicate {
+    runs.into_iter().map(|run| run.roots(f)).collect()
+}
+
+impl Run<'_> {
+    /// The certified roots without duplicates, then the clusters of unresolved boxes.
+    fn roots(self, f: &Poly) -> Vec<SystemRoot> {
+        let system = [f, self.g];
+        let mut out: Vec<SystemRoot> = Vec::new();
+        for (k, &(_, enclosure, point)) in self.certified.iter().enumerate() {
+            let duplicate = self.certified[..k].iter().any(|(region, e, p)| {
+                region.contains_box(&enclosure) || (e.contains(point) && enclosure.contains(*p))
+            });
+            if !duplicate {
+                out.push(SystemRoot {
+                    enclosure,
+                    certified: true,
+                    point,
+                });
+            }
+        }
+        for cluster in crate::geom::clusters(self.unresolved) {
+            let point = best_point(system, &self.jacobian, &cluster);
             out.push(SystemRoot {
-                enclosure,
-                certified: true,
+                enclosure: cluster,
+                certified: false,
                 point,
             });
         }
+        out
     }
-    for cluster in crate::geom::clusters(unresolved) {
-        let point = best_point(system, &jacobian, &cluster);
-        out.push(SystemRoot {
-            enclosure: cluster,
-            certified: false,
-            point,
-        });
-    }
-    out
 }
 
 /// True when `f` and `g` (the first two forms) are both within `noise` (plus their own
 /// rounding) of 0 over the whole box: see [`SystemOptions::noise`].
-fn below_noise(forms: &[Bernstein2], noise: Option<[f64; 2]>) -> bool {
+fn below_noise(forms: [&Bernstein2; 2], noise: Option<[f64; 2]>) -> bool {
     noise.is_some_and(|noise| {
         forms
             .iter()
@@ -530,13 +649,13 @@ fn below_noise(forms: &[Bernstein2], noise: Option<[f64; 2]>) -> bool {
 /// `Σ_c |δ_rc − (Y J)_rc| rad_c < rad_r` for both rows, which the wider `J(X)` only
 /// makes harder. A box failing it is split without the test: that costs boxes, never
 /// roots.
-fn may_contract(sb: &SystemBox) -> bool {
-    let (w, h) = (sb.b.width(), sb.b.height());
+fn may_contract(forms: [&Bernstein2; 2], b: &Aabb) -> bool {
+    let (w, h) = (b.width(), b.height());
     if !(w > 0.0 && h > 0.0) {
         return true;
     }
     let partial = |k: usize, axis: Axis, len: f64| {
-        let r = sb.forms[k].derivative_range(axis);
+        let r = forms[k].derivative_range(axis);
         Interval::new(r.lo / len, r.hi / len)
     };
     let j = [
@@ -584,8 +703,13 @@ enum Krawczyk {
 }
 
 /// The Krawczyk test of the system over `x` (see [`solve_system`]).
-fn krawczyk(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Krawczyk {
-    let Some(kb) = krawczyk_image(system, jacobian, x) else {
+fn krawczyk(
+    system: [&Poly; 2],
+    jacobian: &[Poly; 4],
+    x: &Aabb,
+    f_over_x: &mut Option<Bernstein2>,
+) -> Krawczyk {
+    let Some(kb) = krawczyk_image(system, jacobian, x, f_over_x) else {
         return Krawczyk::Unknown;
     };
     if kb.min.x > x.min.x && kb.max.x < x.max.x && kb.min.y > x.min.y && kb.max.y < x.max.y {
@@ -604,7 +728,8 @@ fn krawczyk(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Krawczyk {
 /// iterated while it at least halves.
 fn contract(system: [&Poly; 2], jacobian: &[Poly; 4], mut x: Aabb) -> Aabb {
     for _ in 0..64 {
-        let Some(k) = krawczyk_image(system, jacobian, &x).and_then(|k| k.intersection(&x)) else {
+        let image = krawczyk_image(system, jacobian, &x, &mut None);
+        let Some(k) = image.and_then(|k| k.intersection(&x)) else {
             break;
         };
         let shrunk = k.longest_side() <= 0.5 * x.longest_side();
@@ -617,8 +742,13 @@ fn contract(system: [&Poly; 2], jacobian: &[Poly; 4], mut x: Aabb) -> Aabb {
 }
 
 /// The Krawczyk image `K(X)` as a box; `None` where it cannot be formed (a singular
-/// Jacobian at the centre, or overflow).
-fn krawczyk_image(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<Aabb> {
+/// Jacobian at the centre, or overflow). `f_over_x` holds `f`'s form over `x` once made.
+fn krawczyk_image(
+    system: [&Poly; 2],
+    jacobian: &[Poly; 4],
+    x: &Aabb,
+    f_over_x: &mut Option<Bernstein2>,
+) -> Option<Aabb> {
     let m = x.center();
     let (mx, my) = (Interval::point(m.x), Interval::point(m.y));
     let zero = Interval::point(0.0);
@@ -631,7 +761,7 @@ fn krawczyk_image(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<
     if !(det.is_finite() && det != 0.0) {
         return None;
     }
-    let j = interval_jacobian(system, jacobian, x)?;
+    let j = interval_jacobian(system, jacobian, x, f_over_x)?;
     let finite = |i: &Interval| i.lo.is_finite() && i.hi.is_finite();
     if !fm.iter().chain(&j).all(finite) {
         return None;
@@ -662,8 +792,13 @@ fn krawczyk_image(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<
 /// divided by the box's width or height (two conversions from `Poly` instead of four).
 /// A box of zero width or height has no derivative along it in its forms: there the
 /// partial derivatives in `jacobian` are converted instead. `None` when a side's length
-/// is not a positive finite number.
-fn interval_jacobian(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<[Interval; 4]> {
+/// is not a positive finite number. `f_over_x` holds `f`'s form over `x` once made.
+fn interval_jacobian(
+    system: [&Poly; 2],
+    jacobian: &[Poly; 4],
+    x: &Aabb,
+    f_over_x: &mut Option<Bernstein2>,
+) -> Option<[Interval; 4]> {
     if !(x.width() > 0.0 && x.height() > 0.0) {
         return Some(std::array::from_fn(|k| {
             Bernstein2::from_poly(&jacobian[k], x).range()
@@ -678,8 +813,9 @@ fn interval_jacobian(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Opti
         return None;
     }
     let mut j = [Interval::point(0.0); 4];
-    for (row, p) in system.iter().enumerate() {
-        let form = Bernstein2::from_poly(p, x);
+    let g_over_x = Bernstein2::from_poly(system[1], x);
+    let f_over_x = &*f_over_x.get_or_insert_with(|| Bernstein2::from_poly(system[0], x));
+    for (row, form) in [f_over_x, &g_over_x].into_iter().enumerate() {
         for (col, (axis, side)) in [Axis::X, Axis::Y].into_iter().zip(sides).enumerate() {
             j[2 * row + col] = form.derivative_range(axis).div(side)?;
         }
@@ -1007,6 +1143,36 @@ mod system_tests {
                 ..SystemOptions::for_domain(&domain)
             };
             assert_certified(&solve_system(&f, &g, &[], &domain, &opts), &expected);
+        }
+    }
+
+    #[test]
+    fn systems_sharing_f_get_the_answers_of_separate_calls() {
+        // a curve's turning points in x and in y, and the nodal cubic's with a noise
+        // floor and a small budget (uncertified clusters too)
+        let cases = [
+            ("x^2/4 + y^2 - 1", [-3.0, -3.0, 3.0, 3.0], None, 1 << 16),
+            (
+                "y^2 - x^2*(x + 1)",
+                [-2.0, -2.0, 2.0, 2.0],
+                Some([1e-9, 1e-8]),
+                300,
+            ),
+        ];
+        for (f, d, noise, max_boxes) in cases {
+            let (f, domain) = (poly(f), Aabb::from_array(d));
+            let gs = [f.partial(0), f.partial(1)];
+            let opts = [1.0, 2.0].map(|k| SystemOptions {
+                noise: noise.map(|[a, b]| [a, k * b]),
+                max_boxes,
+                units: [1.0, 3.0],
+                ..SystemOptions::for_domain(&domain)
+            });
+            let together = solve_systems(&f, &gs, &[], &domain, &opts);
+            for ((g, o), found) in gs.iter().zip(&opts).zip(&together) {
+                assert_eq!(found, &solve_system(&f, g, &[], &domain, o));
+                assert!(!found.is_empty());
+            }
         }
     }
 

@@ -324,3 +324,41 @@ fn an_algebraic_curve_whose_distances_f64_cannot_square_is_refused() {
         assert!(report.passed, "{side:e}: {}", report.summary_line());
     }
 }
+
+#[test]
+fn a_site_far_outside_the_domain_leaves_the_diagram_near_it_exact() {
+    // The T of segments with a point site at (0.3, 1e15): the incremental engine's edges
+    // run from vertices near the domain to vertices some 1e15 away, and their cuts at
+    // the domain boundary, taken at a fraction near 1 of that length, were rounded to
+    // multiples of 0.125 (10 epsilons off; `gvd verify` failed it). The far site's
+    // cell does not reach the domain: the diagram there is the T's own.
+    let t = scene("crossings/t");
+    let ends = |d: &gvd::VoronoiComplex| -> Vec<gvd::Point> {
+        let ends = d.edges.iter();
+        ends.flat_map(|e| [e.points[0], e.points[e.points.len() - 1]])
+            .collect()
+    };
+    // every end of one diagram within 1e-12 of an end of the other
+    let matched =
+        |a: &[gvd::Point], b: &[gvd::Point]| a.iter().all(|p| b.iter().any(|q| p.dist(*q) < 1e-12));
+    for mode in [gvd::Mode::Voronoi, gvd::Mode::Complex] {
+        let near = compute(&t.clone().with_mode(mode), &Options::default()).unwrap();
+        for far in [[0.3, 1e15], [0.3, -1e15], [1e15, 0.2], [-7e14, -7e14]] {
+            let mut sites = t.sites().to_vec();
+            sites.push(gvd::Site::new(gvd::SiteKind::Point {
+                at: gvd::Point::new(far[0], far[1]),
+                metric: gvd::Metric::Euclidean,
+            }));
+            let sc = Scene::new(t.domain(), t.epsilon(), mode, sites).unwrap();
+            let d = compute(&sc, &Options::default()).unwrap();
+            let report = verify(&sc, &d, &VerifyOptions::default()).unwrap();
+            assert!(report.passed, "{far:?} {mode:?}: {}", report.summary_line());
+            let (a, b) = (ends(&near), ends(&d));
+            assert_eq!(a.len(), b.len(), "{far:?} {mode:?}");
+            assert!(
+                matched(&a, &b) && matched(&b, &a),
+                "{far:?} {mode:?}: {a:?} vs {b:?}"
+            );
+        }
+    }
+}

@@ -362,3 +362,47 @@ fn a_site_far_outside_the_domain_leaves_the_diagram_near_it_exact() {
         }
     }
 }
+
+#[test]
+fn a_point_site_inside_a_solid_polygon_is_refused() {
+    // In 'voronoi' and 'complex' modes a polygon's inside is part of the site: a point
+    // site there (site 2, in the ring around the hole) has no cell, and was accepted
+    // with none. It is refused naming it and the polygon; points on the boundary (site
+    // 3, a shared point) and in the hole (site 4) are not inside.
+    let sc = Scene::from_json(
+        &std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("tests/data/hostile/point-inside-polygon.json"),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    for mode in [gvd::Mode::Voronoi, gvd::Mode::Complex] {
+        match compute(&sc.clone().with_mode(mode), &Options::default()) {
+            Err(Error::Site {
+                site,
+                field,
+                message,
+            }) => {
+                assert_eq!((site, field.as_str()), (2, "at"), "{message}");
+                assert!(message.contains("inside polygon site 0"), "{message}");
+            }
+            other => panic!("{mode:?}: {:?}", other.map(|d| d.edges.len())),
+        }
+        // without it, the diagram is computed
+        let mut sites = sc.sites().to_vec();
+        sites.remove(2);
+        let rest = Scene::new(sc.domain(), sc.epsilon(), mode, sites).unwrap();
+        let d = compute(&rest, &Options::default()).unwrap();
+        let report = verify(&rest, &d, &grid64()).unwrap();
+        assert!(report.passed, "{mode:?}: {}", report.summary_line());
+    }
+    // in medial_axis mode the diagram is the one inside the polygon: points are
+    // obstacles (one on a polygon's edge is refused there, as on a segment)
+    let mut sites = sc.sites().to_vec();
+    sites.remove(3);
+    let inside = Scene::new(sc.domain(), sc.epsilon(), gvd::Mode::MedialAxis, sites).unwrap();
+    let d = compute(&inside, &Options::default()).unwrap();
+    let report = verify(&inside, &d, &grid64()).unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}

@@ -21,7 +21,7 @@
 //! not round onto the edges) may pass.
 
 use super::validate::{contact, Contact};
-use super::{Site, SiteKind};
+use super::{Metric, Mode, Site, SiteKind};
 use crate::error::Error;
 use crate::geom::grid::{bounds_of_points, BucketGrid};
 use crate::geom::predicates::orientation as orient;
@@ -61,14 +61,7 @@ enum Witness {
 /// `rings`) and the earlier one; of several such pairs, the one with the smallest
 /// indices.
 pub(crate) fn overlapping_polygons(sites: &[Site]) -> Result<(), Error> {
-    let polygons: Vec<(usize, &[Vec<Point>])> = sites
-        .iter()
-        .enumerate()
-        .filter_map(|(i, s)| match &s.kind {
-            SiteKind::Polygon { rings } => Some((i, rings.as_slice())),
-            _ => None,
-        })
-        .collect();
+    let polygons = polygon_sites(sites);
     if polygons.len() < 2 {
         return Ok(());
     }
@@ -208,34 +201,64 @@ fn same_way_along(e: &Edge, f: &Edge) -> bool {
     common && (e0 < e1) == (f0 < f1)
 }
 
+/// The polygons' regions, for locating points strictly inside them: a grid of their
+/// outer rings' boxes, and a slab index of each polygon's edges ([`RayCrossings`],
+/// exact).
+struct Regions {
+    boxes: Vec<Aabb>,
+    grid: BucketGrid,
+    indices: Vec<RayCrossings>,
+}
+
+impl Regions {
+    /// The regions of `polygons`, whose edges `edges` lists polygon by polygon.
+    fn new(polygons: &[(usize, &[Vec<Point>])], edges: &[Edge]) -> Regions {
+        let boxes: Vec<Aabb> = polygons
+            .iter()
+            .map(|(_, rings)| bounds_of_points(rings[0].iter().copied()))
+            .collect();
+        let extent = bounds_of_points(boxes.iter().flat_map(|b| [b.min, b.max]));
+        let side = extent.longest_side() / (polygons.len() as f64).sqrt();
+        let grid = BucketGrid::new(extent, side, 4096, boxes.len(), |k| boxes[k]);
+        let mut indices: Vec<RayCrossings> = Vec::with_capacity(polygons.len());
+        let mut start = 0;
+        for p in 0..polygons.len() {
+            let end = start + edges[start..].partition_point(|e| e.polygon == p as u32);
+            indices.push(RayCrossings::new(
+                edges[start..end].iter().map(|e| (e.a, e.b)).collect(),
+            ));
+            start = end;
+        }
+        Regions {
+            boxes,
+            grid,
+            indices,
+        }
+    }
+
+    /// Calls `f` with every polygon (its index in the list) that holds `q` strictly
+    /// inside: not on its boundary, not in a hole.
+    fn holding(&self, q: Point, mut f: impl FnMut(u32)) {
+        for &p in self.grid.bucket(self.grid.cell_of(q)) {
+            if self.boxes[p as usize].contains(q)
+                && self.indices[p as usize].locate(q) == Location::Inside
+            {
+                f(p);
+            }
+        }
+    }
+}
+
 /// Corners and edge midpoints of each polygon that lie strictly inside another.
 fn points_inside(
     polygons: &[(usize, &[Vec<Point>])],
     edges: &[Edge],
     note: &mut impl FnMut(Witness),
 ) {
-    let boxes: Vec<Aabb> = polygons
-        .iter()
-        .map(|(_, rings)| bounds_of_points(rings[0].iter().copied()))
-        .collect();
-    let extent = bounds_of_points(boxes.iter().flat_map(|b| [b.min, b.max]));
-    let side = extent.longest_side() / (polygons.len() as f64).sqrt();
-    let grid = BucketGrid::new(extent, side, 4096, boxes.len(), |k| boxes[k]);
-    let mut indices: Vec<RayCrossings> = Vec::with_capacity(polygons.len());
-    let mut start = 0;
-    for p in 0..polygons.len() {
-        let end = start + edges[start..].partition_point(|e| e.polygon == p as u32);
-        indices.push(RayCrossings::new(
-            edges[start..end].iter().map(|e| (e.a, e.b)).collect(),
-        ));
-        start = end;
-    }
+    let regions = Regions::new(polygons, edges);
     let mut locate = |q: Point, polygon: u32, ring: u32, index: u32, middle: bool| {
-        for &other in grid.bucket(grid.cell_of(q)) {
-            if other != polygon
-                && boxes[other as usize].contains(q)
-                && indices[other as usize].locate(q) == Location::Inside
-            {
+        regions.holding(q, |other| {
+            if other != polygon {
                 note(Witness::Inside {
                     polygon,
                     ring,
@@ -244,7 +267,7 @@ fn points_inside(
                     inside: other,
                 });
             }
-        }
+        });
     };
     for (p, (_, rings)) in polygons.iter().enumerate() {
         for (r, ring) in rings.iter().enumerate() {
@@ -259,6 +282,70 @@ fn points_inside(
             }
         }
     }
+}
+
+/// Refuses a point site strictly inside a polygon site (outside its holes), naming the
+/// point's `at` and the first polygon that holds it, in the modes where polygons are
+/// solid (`voronoi`, `complex`: their insides are part of the site; in `medial_axis`
+/// mode the diagram is the one inside them, and points there are obstacles). There a point
+/// whose field vanishes only at itself (Euclidean, lp) is never nearer than the
+/// polygon, whose field is 0 on the whole region: its cell would be empty (reading a
+/// polygon as its boundary instead would give it one inside). The location is exact
+/// (orientation signs, Sunday01): a point on a polygon's boundary is a shared point,
+/// accepted. Of several such points, the first in the scene.
+pub(crate) fn points_inside_polygons(sites: &[Site], mode: Mode) -> Result<(), Error> {
+    if mode == Mode::MedialAxis {
+        return Ok(());
+    }
+    let polygons = polygon_sites(sites);
+    let points: Vec<(usize, Point)> = sites
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| match &s.kind {
+            SiteKind::Point {
+                at,
+                metric: Metric::Euclidean | Metric::Lp { .. },
+            } => Some((i, *at)),
+            _ => None,
+        })
+        .collect();
+    if polygons.is_empty() || points.is_empty() {
+        return Ok(());
+    }
+    let regions = Regions::new(&polygons, &oriented_edges(&polygons));
+    for (i, at) in points {
+        let mut holder: Option<usize> = None;
+        regions.holding(at, |p| {
+            let site = polygons[p as usize].0;
+            holder = Some(holder.map_or(site, |h| h.min(site)));
+        });
+        if let Some(polygon) = holder {
+            return Err(Error::site(
+                i,
+                "at",
+                format!(
+                    "lies inside polygon site {polygon}: in '{}' mode a polygon is solid (its \
+                     inside is part of the site), so a point inside it has no cell; move the \
+                     point out or onto the boundary (a shared point), or use mode \
+                     'medial_axis' for the diagram inside the polygon",
+                    mode.name()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The polygon sites, with their site indices.
+fn polygon_sites(sites: &[Site]) -> Vec<(usize, &[Vec<Point>])> {
+    sites
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| match &s.kind {
+            SiteKind::Polygon { rings } => Some((i, rings.as_slice())),
+            _ => None,
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -367,5 +454,100 @@ mod tests {
         ] {
             assert_eq!(refusal(a, b), None, "{name}");
         }
+    }
+
+    /// The refusal of `points` (Euclidean unless given) among the polygons `rings` in
+    /// `mode`: the point's index and the message; `None` when accepted.
+    fn point_refusal(
+        polygons: &[&[&[[f64; 2]]]],
+        points: &[([f64; 2], Metric)],
+        mode: Mode,
+    ) -> Option<(usize, String)> {
+        let mut sites: Vec<Site> = polygons.iter().map(|p| polygon(p)).collect();
+        sites.extend(points.iter().map(|([x, y], metric)| {
+            Site::new(SiteKind::Point {
+                at: Point::new(*x, *y),
+                metric: metric.clone(),
+            })
+        }));
+        points_inside_polygons(&sites, mode).err().map(|e| {
+            assert_eq!(e.field(), Some("at"), "{e}");
+            (e.site_index().unwrap(), e.to_string())
+        })
+    }
+
+    #[test]
+    fn points_inside_solid_polygons_are_refused() {
+        let hole: &[[f64; 2]] = &[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]];
+        let island: &[[f64; 2]] = &[[-0.25, -0.25], [0.25, -0.25], [0.25, 0.25], [-0.25, 0.25]];
+        let below = 1.0f64.next_down();
+        for mode in [Mode::Voronoi, Mode::Complex] {
+            for (name, polygons, at, by) in [
+                ("inside", &[&[SQUARE][..]][..], [0.2, 0.3], 0),
+                ("an ulp inside a side", &[&[SQUARE][..]], [below, 0.3], 0),
+                (
+                    "in the ring around a hole",
+                    &[&[BIG, hole][..]],
+                    [1.0, 1.0],
+                    0,
+                ),
+                (
+                    "on an island in a hole",
+                    &[&[BIG, hole][..], &[island]],
+                    [0.1, 0.0],
+                    1,
+                ),
+            ] {
+                let (site, m) = point_refusal(
+                    polygons,
+                    &[([5.0, 5.0], Metric::Euclidean), (at, Metric::Euclidean)],
+                    mode,
+                )
+                .unwrap_or_else(|| panic!("{name}: accepted"));
+                assert_eq!(site, polygons.len() + 1, "{name}: {m}");
+                assert!(
+                    m.contains(&format!("inside polygon site {by}")),
+                    "{name}: {m}"
+                );
+                assert!(m.contains(mode.name()), "{name}: {m}");
+            }
+            let lp = Metric::Lp { p: 4 };
+            assert!(point_refusal(&[&[SQUARE]], &[([0.0, 0.0], lp)], mode).is_some());
+        }
+        // in medial_axis mode the diagram is the one inside: the point is an obstacle
+        assert_eq!(
+            point_refusal(
+                &[&[SQUARE]],
+                &[([0.2, 0.3], Metric::Euclidean)],
+                Mode::MedialAxis
+            ),
+            None
+        );
+    }
+
+    #[test]
+    fn points_on_outside_or_in_holes_of_polygons_are_accepted() {
+        let hole: &[[f64; 2]] = &[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]];
+        let above = 1.0f64.next_up();
+        for (name, polygons, at) in [
+            ("on a corner", &[&[SQUARE][..]][..], [1.0, 1.0]),
+            ("on a side", &[&[SQUARE][..]], [1.0, 0.3]),
+            ("an ulp outside a side", &[&[SQUARE][..]], [above, 0.3]),
+            ("in a hole", &[&[BIG, hole][..]], [0.0, 0.0]),
+            ("on a hole's side", &[&[BIG, hole][..]], [0.5, 0.1]),
+            ("outside", &[&[SQUARE][..]], [3.0, 0.0]),
+        ] {
+            assert_eq!(
+                point_refusal(polygons, &[(at, Metric::Euclidean)], Mode::Voronoi),
+                None,
+                "{name}"
+            );
+        }
+        // a power point's field is negative around it: it may have a cell inside
+        let power = Metric::Power { weight: 0.5 };
+        assert_eq!(
+            point_refusal(&[&[SQUARE]], &[([0.0, 0.0], power)], Mode::Voronoi),
+            None
+        );
     }
 }

@@ -406,3 +406,17 @@ fn a_point_site_inside_a_solid_polygon_is_refused() {
     let report = verify(&inside, &d, &grid64()).unwrap();
     assert!(report.passed, "{}", report.summary_line());
 }
+
+#[test]
+fn a_polygon_inscribed_at_awkward_coordinates_is_refused() {
+    // Its corners lie on the sides of a diamond and no edge's midpoint rounds onto its
+    // edge, so the overlap check, which tried corners and such midpoints, let it pass:
+    // a diagram with edges inside both (sound 0.015, exit 0). An edge that runs from a
+    // point of the other's boundary into its inside is now a witness, exactly.
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/hostile/polygon-inscribed-awkward.json"),
+    )
+    .unwrap();
+    assert_refused(&text, 1, "rings", "runs into the inside of polygon site 0");
+}

@@ -11,16 +11,21 @@
 //!   one line over a common piece and point the same way (every ring oriented with its
 //!   region on the left: outer rings counter-clockwise, holes clockwise), tried within
 //!   the cells of a grid of the edges;
-//! * every corner of each polygon, and every edge's midpoint where it rounds onto the
-//!   edge, located in the other polygons whose boxes hold it, each through a slab index
-//!   of its edges ([`RayCrossings`]).
+//! * pairs of edges that touch, where one runs from the point they share into the
+//!   other polygon's inside: the direction along it lies strictly left of the other's
+//!   edge there, or strictly inside the other's angle at its corner there;
+//! * every corner of each polygon, located in the other polygons whose boxes hold it,
+//!   each through a slab index of its edges ([`RayCrossings`]).
 //!
-//! Nested polygons, crossing ones, copies with a corner moved (even by an ulp) and
-//! copies are found. An overlap only the middle of an edge piece between two touches
-//! would show (a polygon inscribed in another, corners on its sides, whose midpoints do
-//! not round onto the edges) may pass.
+//! Complete: a boundary point of `A` strictly inside `B` lies on an edge of `A`, on a
+//! piece between two consecutive points where that edge meets `B`'s boundary (or its
+//! own ends). The edges do not cross there, so the whole piece is inside `B`: from its
+//! start on `B`'s boundary (an end of the edge, or a corner of `B`) the edge runs into
+//! `B`, or, if the piece touches `B` nowhere, its end corners are inside `B`. A polygon
+//! inscribed in another, its corners on the other's sides, is found whatever its
+//! coordinates.
 
-use super::validate::{contact, Contact};
+use super::validate::{contact, on_segment, Contact};
 use super::{Metric, Mode, Site, SiteKind};
 use crate::error::Error;
 use crate::geom::grid::{bounds_of_points, BucketGrid};
@@ -38,6 +43,10 @@ struct Edge {
     index: u32,
     a: Point,
     b: Point,
+    /// The positions (in the list of edges) of the ring's oriented edges that end at
+    /// `a` and that start at `b`.
+    before: u32,
+    after: u32,
 }
 
 /// What shows two polygons' insides overlap.
@@ -46,13 +55,14 @@ enum Witness {
     Cross(Edge, Edge),
     /// Edges `e` and `f` run along one line the same way over a common piece.
     Along(Edge, Edge),
-    /// Point `index` of ring `ring` of polygon `polygon` (a corner, or the middle of
-    /// the edge from there) lies strictly inside polygon `inside`.
+    /// Edge `e` runs into the inside of polygon `inside` from a point on its boundary.
+    Enters(Edge, u32),
+    /// Point `index` of ring `ring` of polygon `polygon` lies strictly inside polygon
+    /// `inside`.
     Inside {
         polygon: u32,
         ring: u32,
         index: u32,
-        middle: bool,
         inside: u32,
     },
 }
@@ -70,6 +80,7 @@ pub(crate) fn overlapping_polygons(sites: &[Site]) -> Result<(), Error> {
     let mut note = |w: Witness| {
         let (p, q) = match &w {
             Witness::Cross(e, f) | Witness::Along(e, f) => (e.polygon, f.polygon),
+            Witness::Enters(e, inside) => (e.polygon, *inside),
             Witness::Inside {
                 polygon, inside, ..
             } => (*polygon, *inside),
@@ -103,18 +114,21 @@ pub(crate) fn overlapping_polygons(sites: &[Site]) -> Result<(), Error> {
                 mine.index, mine.ring, theirs.index, theirs.ring
             )
         }
+        Witness::Enters(e, _) => {
+            let what = format!("edge {} of ring {}", e.index, e.ring);
+            if site(e.polygon) == later {
+                format!("{what} runs into the inside of polygon site {earlier} from its boundary")
+            } else {
+                format!("{what} of polygon site {earlier} runs into its inside from its boundary")
+            }
+        }
         Witness::Inside {
             polygon,
             ring,
             index,
-            middle,
             ..
         } => {
-            let what = if middle {
-                format!("the middle of edge {index} of ring {ring}")
-            } else {
-                format!("point {index} of ring {ring}")
-            };
+            let what = format!("point {index} of ring {ring}");
             if site(polygon) == later {
                 format!("{what} lies inside polygon site {earlier}")
             } else {
@@ -138,16 +152,25 @@ fn oriented_edges(polygons: &[(usize, &[Vec<Point>])]) -> Vec<Edge> {
     for (p, (_, rings)) in polygons.iter().enumerate() {
         for (r, ring) in rings.iter().enumerate() {
             let forward = counter_clockwise(ring) == (r == 0);
-            let n = ring.len();
+            let (n, start) = (ring.len(), edges.len());
             for k in 0..n {
                 let (a, b) = (ring[k], ring[(k + 1) % n]);
-                let (a, b) = if forward { (a, b) } else { (b, a) };
+                // edge `k − 1` ends at point `k` and edge `k + 1` starts at point `k + 1`;
+                // reversed, edge `k` runs from point `k + 1` to point `k`
+                let (prev, next) = (start + (k + n - 1) % n, start + (k + 1) % n);
+                let (a, b, before, after) = if forward {
+                    (a, b, prev, next)
+                } else {
+                    (b, a, next, prev)
+                };
                 edges.push(Edge {
                     polygon: p as u32,
                     ring: r as u32,
                     index: k as u32,
                     a,
                     b,
+                    before: before as u32,
+                    after: after as u32,
                 });
             }
         }
@@ -181,10 +204,50 @@ fn edge_contacts(edges: &[Edge], note: &mut impl FnMut(Witness)) {
                 match contact(e.a, e.b, f.a, f.b) {
                     Contact::Cross => note(Witness::Cross(e, f)),
                     Contact::Touch if same_way_along(&e, &f) => note(Witness::Along(e, f)),
+                    Contact::Touch if runs_into(&e, &f, edges) => {
+                        note(Witness::Enters(e, f.polygon))
+                    }
+                    Contact::Touch if runs_into(&f, &e, edges) => {
+                        note(Witness::Enters(f, e.polygon))
+                    }
                     _ => {}
                 }
             }
         }
+    }
+}
+
+/// Whether `e`, from a point it shares with `f` (an end of either), runs into the inside
+/// of `f`'s polygon (see [`enters`]).
+fn runs_into(e: &Edge, f: &Edge, edges: &[Edge]) -> bool {
+    let on = |g: &Edge, p: Point| orient(g.a, g.b, p) == Ordering::Equal && on_segment(g.a, g.b, p);
+    [e.a, e.b, f.a, f.b].into_iter().any(|p| {
+        on(e, p)
+            && on(f, p)
+            && [e.a, e.b]
+                .into_iter()
+                .any(|to| to != p && enters(p, to, f, edges))
+    })
+}
+
+/// Whether the direction from `p`, a point of edge `f`, towards `to` points strictly
+/// into the inside of `f`'s polygon (on its left, [`oriented_edges`]): left of `f` at a
+/// point inside it; at a corner, left of both edges there where the ring turns left,
+/// of either where it turns right (exact orientation signs: `p` lies on both lines).
+fn enters(p: Point, to: Point, f: &Edge, edges: &[Edge]) -> bool {
+    let left = |a: Point, b: Point| orient(a, b, to) == Ordering::Greater;
+    let (into, out) = if p == f.a {
+        (&edges[f.before as usize], f)
+    } else if p == f.b {
+        (f, &edges[f.after as usize])
+    } else {
+        return left(f.a, f.b);
+    };
+    let (u, v) = (into.a, out.b);
+    match orient(u, p, v) {
+        Ordering::Greater => left(u, p) && left(p, v),
+        Ordering::Less => left(u, p) || left(p, v),
+        Ordering::Equal => left(p, v),
     }
 }
 
@@ -249,36 +312,27 @@ impl Regions {
     }
 }
 
-/// Corners and edge midpoints of each polygon that lie strictly inside another.
+/// Corners of each polygon that lie strictly inside another.
 fn points_inside(
     polygons: &[(usize, &[Vec<Point>])],
     edges: &[Edge],
     note: &mut impl FnMut(Witness),
 ) {
     let regions = Regions::new(polygons, edges);
-    let mut locate = |q: Point, polygon: u32, ring: u32, index: u32, middle: bool| {
-        regions.holding(q, |other| {
-            if other != polygon {
-                note(Witness::Inside {
-                    polygon,
-                    ring,
-                    index,
-                    middle,
-                    inside: other,
-                });
-            }
-        });
-    };
     for (p, (_, rings)) in polygons.iter().enumerate() {
+        let polygon = p as u32;
         for (r, ring) in rings.iter().enumerate() {
-            let n = ring.len();
             for (k, &a) in ring.iter().enumerate() {
-                locate(a, p as u32, r as u32, k as u32, false);
-                let b = ring[(k + 1) % n];
-                let middle = a.lerp(b, 0.5);
-                if orient(a, b, middle) == Ordering::Equal {
-                    locate(middle, p as u32, r as u32, k as u32, true);
-                }
+                regions.holding(a, |inside| {
+                    if inside != polygon {
+                        note(Witness::Inside {
+                            polygon,
+                            ring: r as u32,
+                            index: k as u32,
+                            inside,
+                        });
+                    }
+                });
             }
         }
     }
@@ -398,7 +452,7 @@ mod tests {
             (
                 "inscribed, corners on the sides",
                 &[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]],
-                "the middle of edge 0 of ring 0 lies inside",
+                "runs into the inside of polygon site 0",
             ),
             (
                 "crossing",
@@ -409,6 +463,29 @@ mod tests {
         ] {
             let m = refusal(&[SQUARE], &[other]).unwrap_or_else(|| panic!("{name}: accepted"));
             assert!(m.contains(says), "{name}: {m}");
+        }
+        // inscribed at coordinates where no edge's midpoint rounds onto the edge
+        let diamond: &[[f64; 2]] = &[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]];
+        let (a, b) = (0.7, 1.0 - 0.7);
+        let inscribed: &[[f64; 2]] = &[[a, -b], [0.6, 0.4], [-a, b], [-0.6, -0.4]];
+        let m = refusal(&[diamond], &[inscribed]).expect("inscribed: accepted");
+        assert!(m.contains("runs into the inside of polygon site 0"), "{m}");
+        // from a corner where the other turns right (reflex), into its inside or not
+        let l_shape: &[[f64; 2]] = &[
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ];
+        let into: &[[f64; 2]] = &[[1.0, 1.0], [0.0, 0.5], [0.5, 0.0]];
+        assert!(refusal(&[l_shape], &[into]).is_some_and(|m| m.contains("runs into")));
+        for outside in [
+            &[[1.0, 1.0], [2.0, 1.5], [1.5, 2.0]][..],
+            &[[1.0, 1.0], [2.0, 1.0], [2.0, 2.0]],
+        ] {
+            assert_eq!(refusal(&[l_shape], &[outside]), None, "{outside:?}");
         }
         // an island as large as the hole it sits in, but turned: it overlaps the ring
         let turned: &[[f64; 2]] = &[[0.0, -1.5], [1.5, 0.0], [0.0, 1.5], [-1.5, 0.0]];

@@ -420,3 +420,28 @@ fn a_polygon_inscribed_at_awkward_coordinates_is_refused() {
     .unwrap();
     assert_refused(&text, 1, "rings", "runs into the inside of polygon site 0");
 }
+
+#[test]
+fn collinear_points_below_f64s_resolution_are_floored_by_both_engines() {
+    // Twenty collinear points at epsilon 1e-17 in a domain of size 4: the exact point
+    // engine writes its edges' ends to a few ulps near 2 (5e-15 off), and said nothing
+    // of it, so verify failed the diagram at 1e-17. Both engines now floor such an
+    // epsilon, state the resolution they have (a warning of the CLI), and verify
+    // checks the diagram there.
+    let sc = scene("fuzz/collinear-20-eps1e-17");
+    for engine in [Engine::Auto, Engine::Subdivision] {
+        let options = Options {
+            engine,
+            ..Default::default()
+        };
+        let d = compute(&sc, &options).unwrap();
+        assert_eq!(d.stats["epsilon_floored_from"], 1e-17, "{engine:?}");
+        let resolution = d.stats["resolution"].as_f64().unwrap();
+        assert!(
+            resolution > 1e-15 && resolution < 1e-10,
+            "{engine:?}: {resolution}"
+        );
+        let report = verify(&sc, &d, &grid64()).unwrap();
+        assert!(report.passed, "{engine:?}: {}", report.summary_line());
+    }
+}

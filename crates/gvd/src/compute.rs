@@ -178,6 +178,7 @@ fn add_clearances_and_prune(
 fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     let watch = Watch::start(&options.control)?;
     check_medial_axis(scene)?;
+    scene.refuse_points_inside_polygons()?;
     if options.engine == Engine::Freeform
         || (options.engine == Engine::Auto && crate::freeform::supports(scene))
     {

@@ -324,3 +324,124 @@ fn an_algebraic_curve_whose_distances_f64_cannot_square_is_refused() {
         assert!(report.passed, "{side:e}: {}", report.summary_line());
     }
 }
+
+#[test]
+fn a_site_far_outside_the_domain_leaves_the_diagram_near_it_exact() {
+    // The T of segments with a point site at (0.3, 1e15): the incremental engine's edges
+    // run from vertices near the domain to vertices some 1e15 away, and their cuts at
+    // the domain boundary, taken at a fraction near 1 of that length, were rounded to
+    // multiples of 0.125 (10 epsilons off; `gvd verify` failed it). The far site's
+    // cell does not reach the domain: the diagram there is the T's own.
+    let t = scene("crossings/t");
+    let ends = |d: &gvd::VoronoiComplex| -> Vec<gvd::Point> {
+        let ends = d.edges.iter();
+        ends.flat_map(|e| [e.points[0], e.points[e.points.len() - 1]])
+            .collect()
+    };
+    // every end of one diagram within 1e-12 of an end of the other
+    let matched =
+        |a: &[gvd::Point], b: &[gvd::Point]| a.iter().all(|p| b.iter().any(|q| p.dist(*q) < 1e-12));
+    for mode in [gvd::Mode::Voronoi, gvd::Mode::Complex] {
+        let near = compute(&t.clone().with_mode(mode), &Options::default()).unwrap();
+        for far in [[0.3, 1e15], [0.3, -1e15], [1e15, 0.2], [-7e14, -7e14]] {
+            let mut sites = t.sites().to_vec();
+            sites.push(gvd::Site::new(gvd::SiteKind::Point {
+                at: gvd::Point::new(far[0], far[1]),
+                metric: gvd::Metric::Euclidean,
+            }));
+            let sc = Scene::new(t.domain(), t.epsilon(), mode, sites).unwrap();
+            let d = compute(&sc, &Options::default()).unwrap();
+            let report = verify(&sc, &d, &VerifyOptions::default()).unwrap();
+            assert!(report.passed, "{far:?} {mode:?}: {}", report.summary_line());
+            let (a, b) = (ends(&near), ends(&d));
+            assert_eq!(a.len(), b.len(), "{far:?} {mode:?}");
+            assert!(
+                matched(&a, &b) && matched(&b, &a),
+                "{far:?} {mode:?}: {a:?} vs {b:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_point_site_inside_a_solid_polygon_is_refused() {
+    // In 'voronoi' and 'complex' modes a polygon's inside is part of the site: a point
+    // site there (site 2, in the ring around the hole) has no cell, and was accepted
+    // with none. It is refused naming it and the polygon; points on the boundary (site
+    // 3, a shared point) and in the hole (site 4) are not inside.
+    let sc = Scene::from_json(
+        &std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("tests/data/hostile/point-inside-polygon.json"),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    for mode in [gvd::Mode::Voronoi, gvd::Mode::Complex] {
+        match compute(&sc.clone().with_mode(mode), &Options::default()) {
+            Err(Error::Site {
+                site,
+                field,
+                message,
+            }) => {
+                assert_eq!((site, field.as_str()), (2, "at"), "{message}");
+                assert!(message.contains("inside polygon site 0"), "{message}");
+            }
+            other => panic!("{mode:?}: {:?}", other.map(|d| d.edges.len())),
+        }
+        // without it, the diagram is computed
+        let mut sites = sc.sites().to_vec();
+        sites.remove(2);
+        let rest = Scene::new(sc.domain(), sc.epsilon(), mode, sites).unwrap();
+        let d = compute(&rest, &Options::default()).unwrap();
+        let report = verify(&rest, &d, &grid64()).unwrap();
+        assert!(report.passed, "{mode:?}: {}", report.summary_line());
+    }
+    // in medial_axis mode the diagram is the one inside the polygon: points are
+    // obstacles (one on a polygon's edge is refused there, as on a segment)
+    let mut sites = sc.sites().to_vec();
+    sites.remove(3);
+    let inside = Scene::new(sc.domain(), sc.epsilon(), gvd::Mode::MedialAxis, sites).unwrap();
+    let d = compute(&inside, &Options::default()).unwrap();
+    let report = verify(&inside, &d, &grid64()).unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}
+
+#[test]
+fn a_polygon_inscribed_at_awkward_coordinates_is_refused() {
+    // Its corners lie on the sides of a diamond and no edge's midpoint rounds onto its
+    // edge, so the overlap check, which tried corners and such midpoints, let it pass:
+    // a diagram with edges inside both (sound 0.015, exit 0). An edge that runs from a
+    // point of the other's boundary into its inside is now a witness, exactly.
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/hostile/polygon-inscribed-awkward.json"),
+    )
+    .unwrap();
+    assert_refused(&text, 1, "rings", "runs into the inside of polygon site 0");
+}
+
+#[test]
+fn collinear_points_below_f64s_resolution_are_floored_by_both_engines() {
+    // Twenty collinear points at epsilon 1e-17 in a domain of size 4: the exact point
+    // engine writes its edges' ends to a few ulps near 2 (5e-15 off), and said nothing
+    // of it, so verify failed the diagram at 1e-17. Both engines now floor such an
+    // epsilon, state the resolution they have (a warning of the CLI), and verify
+    // checks the diagram there.
+    let sc = scene("fuzz/collinear-20-eps1e-17");
+    for engine in [Engine::Auto, Engine::Subdivision] {
+        let options = Options {
+            engine,
+            ..Default::default()
+        };
+        let d = compute(&sc, &options).unwrap();
+        assert_eq!(d.stats["epsilon_floored_from"], 1e-17, "{engine:?}");
+        let resolution = d.stats["resolution"].as_f64().unwrap();
+        assert!(
+            resolution > 1e-15 && resolution < 1e-10,
+            "{engine:?}: {resolution}"
+        );
+        let report = verify(&sc, &d, &grid64()).unwrap();
+        assert!(report.passed, "{engine:?}: {}", report.summary_line());
+    }
+}

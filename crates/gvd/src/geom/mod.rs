@@ -307,6 +307,33 @@ impl Aabb {
         (t0 <= t1).then_some((t0, t1))
     }
 
+    /// The part of the segment `[a, b]` in the box, if any: its two ends, and whether
+    /// each was cut (is not `a`, resp. `b`, itself). A cut point is measured from the
+    /// segment's end nearer to it, so it carries the rounding of its distance from that
+    /// end, not of the segment's length: a segment from a vertex 1e15 away cut at a unit
+    /// box lands within ulps of 1, not of 1e15 (`a + t (b − a)` with `t` near 1 would
+    /// round to multiples of 0.125 there).
+    pub fn segment_part(&self, a: Point, b: Point) -> Option<([Point; 2], [bool; 2])> {
+        let (t0, t1) = self.segment_range(a, b)?;
+        // `[r0, r1]` of the reversed segment, `r = 1 − t`, for the cuts nearer to `b`
+        let back = || self.segment_range(b, a);
+        let start = if t0 == 0.0 {
+            a
+        } else if t0 <= 0.5 {
+            a.lerp(b, t0)
+        } else {
+            back().map_or(a.lerp(b, t0), |(_, r1)| b.lerp(a, r1))
+        };
+        let end = if t1 == 1.0 {
+            b
+        } else if t1 >= 0.5 {
+            back().map_or(a.lerp(b, t1), |(r0, _)| b.lerp(a, r0))
+        } else {
+            a.lerp(b, t1)
+        };
+        Some(([start, end], [t0 > 0.0, t1 < 1.0]))
+    }
+
     /// The finest distance a computation in f64 resolves over the box: a thousand ulps
     /// of its largest coordinate (below that f64 cannot tell points apart).
     pub fn f64_resolution(&self) -> f64 {

@@ -365,6 +365,12 @@ impl Scene {
         validate::near_coincident_sites(&self.domain, self.epsilon, &self.sites, true)
     }
 
+    /// Refuses a point site inside a polygon site in the modes where polygons are solid
+    /// (checked per run: the mode may change after the scene is built).
+    pub(crate) fn refuse_points_inside_polygons(&self) -> Result<(), Error> {
+        polygon_overlap::points_inside_polygons(&self.sites, self.mode)
+    }
+
     /// Checks and builds a scene. Refusals name the field (`domain`, `epsilon`) or the
     /// site index and its field, as for JSON input.
     pub fn new(domain: Aabb, epsilon: f64, mode: Mode, sites: Vec<Site>) -> Result<Scene, Error> {

@@ -12,7 +12,7 @@ use crate::geom::{Aabb, Point};
 use std::cmp::Ordering;
 
 /// Whether `p`, known to be collinear with segment `ab`, lies on the closed segment.
-fn on_segment(a: Point, b: Point, p: Point) -> bool {
+pub(super) fn on_segment(a: Point, b: Point, p: Point) -> bool {
     a.x.min(b.x) <= p.x && p.x <= a.x.max(b.x) && a.y.min(b.y) <= p.y && p.y <= a.y.max(b.y)
 }
 

@@ -429,7 +429,7 @@ impl Drawing<'_> {
             let pieces = if whole {
                 vec![(points, false, false, 0)]
             } else {
-                let pieces = clip_polyline(&points, domain).into_iter();
+                let pieces = clip_polyline(&points, domain, self.tol).into_iter();
                 pieces
                     .map(|(p, s, e, f)| (SmallVec::from_vec(p), s, e, f))
                     .collect()
@@ -524,25 +524,36 @@ fn number(
 
 /// The pieces of a polyline inside the closed box `b`, each with whether its start and
 /// its end were cut by the box, and the index of the polyline's segment it starts on
-/// (its segment `j` lies on the polyline's segment `first + j`).
-fn clip_polyline(points: &[Point], b: &Aabb) -> Vec<(Vec<Point>, bool, bool, usize)> {
+/// (its segment `j` lies on the polyline's segment `first + j`). A cut at fraction `t`
+/// of a segment is rounded by about `2^-52` of the segment's length: on segments so
+/// long that this could exceed `tol / 16` (an edge to a vertex of a site 1e15 away) it
+/// is measured from the segment's nearer end instead ([`Aabb::segment_part`]).
+fn clip_polyline(points: &[Point], b: &Aabb, tol: f64) -> Vec<(Vec<Point>, bool, bool, usize)> {
+    let long = tol / 16.0 / f64::EPSILON;
     let mut pieces = Vec::new();
     let mut cur: Vec<Point> = Vec::new();
     let (mut cur_cut, mut cur_first) = (false, 0);
     for (k, w) in points.windows(2).enumerate() {
-        let Some((t0, t1)) = b.segment_range(w[0], w[1]) else {
+        let part = if w[0].dist(w[1]) > long {
+            b.segment_part(w[0], w[1])
+        } else {
+            b.segment_range(w[0], w[1]).map(|(t0, t1)| {
+                let ends = [w[0].lerp(w[1], t0), w[0].lerp(w[1], t1)];
+                (ends, [t0 > 0.0, t1 < 1.0])
+            })
+        };
+        let Some(([p0, p1], [start_cut, end_cut])) = part else {
             if !cur.is_empty() {
                 pieces.push((std::mem::take(&mut cur), cur_cut, true, cur_first));
             }
             continue;
         };
-        let (p0, p1) = (w[0].lerp(w[1], t0), w[0].lerp(w[1], t1));
         if cur.is_empty() {
             cur.push(b.clamp(p0));
-            (cur_cut, cur_first) = (t0 > 0.0, k);
+            (cur_cut, cur_first) = (start_cut, k);
         }
         cur.push(b.clamp(p1));
-        if t1 < 1.0 {
+        if end_cut {
             pieces.push((std::mem::take(&mut cur), cur_cut, true, cur_first));
         }
     }

@@ -111,7 +111,7 @@ impl Poly {
     }
 
     /// `p(x, y, z)` in f64, summing `c · x^i y^j z^k` term by term (the powers looked up
-    /// in a table made once per call, up to degree [`TABULATED`]).
+    /// in a table made once per call, up to degree `TABULATED`).
     pub fn eval(&self, x: f64, y: f64, z: f64) -> f64 {
         match self.power_tables([x, y, z], powu) {
             Some([px, py, pz]) => self

@@ -372,7 +372,7 @@ macro_rules! delegate_to_families {
             /// Algebraic curves by the sides they lie on (`algebraic::occlusion`); a
             /// free-form curve whose only possible nearest points over `b` are its ends at
             /// a point of `self` (a corner's point, or another curve's end: a joint), by
-            /// `self` ([`FreeformField::only_ends_at`]).
+            /// `self` (`FreeformField::only_ends_at`).
             fn occludes(&self, _s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> bool {
                 match (self, other, so) {
                     (SiteField::Algebraic(p), SiteField::Algebraic(q), _) => p.occludes_over(q, b),

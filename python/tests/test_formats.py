@@ -14,7 +14,7 @@ def test_geojson_round_trip_through_shapely():
     from shapely.geometry import mapping, shape
 
     outline = shapely.Polygon([(0, 0), (10, 0), (10, 6), (4, 8), (0, 6)], [[(2, 2), (2, 4), (4, 4), (4, 2)]])
-    towns = shapely.MultiPoint([(6, 2), (8, 4), (7, 5.5)])
+    towns = shapely.MultiPoint([(12, 2), (13, 4), (12, 7)])  # outside the land: a polygon is solid
     fc = {"type": "FeatureCollection", "mode": "voronoi",
           "features": [{"type": "Feature", "id": "land", "properties": {}, "geometry": mapping(outline)},
                        {"type": "Feature", "properties": {"id": "towns"}, "geometry": mapping(towns)}]}

@@ -806,6 +806,27 @@ fn the_subdivision_engine_agrees_by_features_in_complex_and_medial_axis_modes() 
     }
 }
 
+/// In `medial_axis` mode both engines refuse curves that bound no region (a fuzzed
+/// bezier4 whose chain no longer closes up was computed by the subdivision engine
+/// with loose edges).
+#[test]
+fn open_curves_have_no_medial_axis_by_either_engine() {
+    let text = r#"{"domain": [-1, -1, 3, 3], "epsilon": 0.01, "mode": "medial_axis", "sites": [
+        {"kind": "bezier", "control_points": [[0, 0], [1, 2], [2, 0]]}]}"#;
+    let sc = Scene::from_json(text).unwrap();
+    for engine in [Engine::Freeform, Engine::Subdivision] {
+        let err = compute(
+            &sc,
+            &Options {
+                engine,
+                ..Default::default()
+            },
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("bound none"), "{engine:?}: {err}");
+    }
+}
+
 /// Beside free-form curves in those modes the subdivision engine refuses sites whose
 /// features it does not name (a segment), and in `medial_axis` mode any other kind,
 /// naming the site.

@@ -91,16 +91,7 @@ pub fn compute_with(
     if pieces.spans.is_empty() {
         return Err(Error::scene("sites", "no free-form curve to compute"));
     }
-    if scene.mode() == crate::scene::Mode::MedialAxis
-        && pieces.spans.iter().all(|s| s.side == pieces::Side::Both)
-    {
-        return Err(Error::scene(
-            "mode",
-            "'medial_axis' keeps the diagram inside the regions that closed curves bound, \
-             and these curves bound none: no curve is closed and no chain of curves \
-             joined end to end closes up",
-        ));
-    }
+    pieces::check_region(scene, &pieces)?;
     let features = Features::new(&pieces);
     let domain = scene.domain();
     let scale = domain.longest_side();

@@ -159,6 +159,20 @@ impl Pieces {
     }
 }
 
+/// Refuses `medial_axis` mode where the curves bound no region (no curve is closed and
+/// no chain closes up: every span's diagram lies on both its sides).
+pub fn check_region(scene: &Scene, pieces: &Pieces) -> Result<(), crate::error::Error> {
+    if scene.mode() == Mode::MedialAxis && pieces.spans.iter().all(|s| s.side == Side::Both) {
+        return Err(crate::error::Error::scene(
+            "mode",
+            "'medial_axis' keeps the diagram inside the regions that closed curves bound, \
+             and these curves bound none: no curve is closed and no chain of curves \
+             joined end to end closes up",
+        ));
+    }
+    Ok(())
+}
+
 /// The spans of one site (homogeneous Bézier control polygons) and whether it is closed,
 /// or `None` when the site is not a free-form curve.
 pub(crate) fn site_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)> {

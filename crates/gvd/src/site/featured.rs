@@ -166,6 +166,7 @@ impl FeatureFields {
     /// The corners and runs of the scene's free-form curves (see the module docs).
     fn add_freeform(&mut self, scene: &Scene) -> Result<(), Error> {
         let cut = pieces::pieces(scene);
+        pieces::check_region(scene, &cut)?;
         let tol = pieces::JOIN * scene.domain().longest_side();
         if scene.mode() == Mode::MedialAxis {
             self.region_box = cut.spans.iter().map(|s| s.bbox).reduce(|a, b| a.union(&b));

@@ -279,6 +279,10 @@ proptest! {
         match Scene::from_value(&v) {
             Ok(_) => {}
             Err(Error::Site { site: s, .. }) => prop_assert_eq!(s, site),
+            // a site grown or moved into another: both are named, the mutated one among them
+            Err(Error::Conflict { site: s, other, .. }) => {
+                prop_assert!(s == site || other == site, "sites {} and {}, mutated {}", s, other, site)
+            }
             Err(e) => prop_assert!(false, "unexpected refusal {}", e),
         }
     }

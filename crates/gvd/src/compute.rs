@@ -265,22 +265,10 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     })
 }
 
-/// Whether the subdivision engine has a distance field for sites of this kind.
-fn subdivision_supports(kind: &SiteKind) -> bool {
-    match kind {
-        SiteKind::Point { .. }
-        | SiteKind::Circle { .. }
-        | SiteKind::Ellipse { .. }
-        | SiteKind::Field { .. }
-        | SiteKind::ImplicitField { .. }
-        | SiteKind::Algebraic { .. }
-        | SiteKind::Bezier { .. }
-        | SiteKind::Bspline { .. } => true,
-        SiteKind::Segment { .. }
-        | SiteKind::Arc { .. }
-        | SiteKind::Polyline { .. }
-        | SiteKind::Polygon { .. } => false,
-    }
+/// Whether the subdivision engine has a distance field for sites of this kind in this
+/// mode (segments, polylines, polygons and arcs as whole sites: `voronoi` mode only).
+fn subdivision_supports(kind: &SiteKind, mode: Mode) -> bool {
+    mode == Mode::Voronoi || !crate::site::is_linear_or_circular(kind)
 }
 
 /// With `Engine::Auto` on a scene the incremental engine cannot take: refuses, naming
@@ -288,7 +276,10 @@ fn subdivision_supports(kind: &SiteKind) -> bool {
 /// engine computes (instead of the first site the subdivision engine lacks).
 fn check_one_engine_takes_all(scene: &Scene) -> Result<(), Error> {
     let sites = scene.sites();
-    let Some(lacking) = sites.iter().position(|s| !subdivision_supports(&s.kind)) else {
+    let Some(lacking) = sites
+        .iter()
+        .position(|s| !subdivision_supports(&s.kind, scene.mode()))
+    else {
         return Ok(());
     };
     let unsupported = |i: usize, message: String| Error::Unsupported {
@@ -303,10 +294,11 @@ fn check_one_engine_takes_all(scene: &Scene) -> Result<(), Error> {
     Err(unsupported(
         lacking,
         format!(
-            "the incremental engine takes this site but not site {other} (kind '{}'), \
-             the subdivision engine takes that one but not this: no engine computes the \
-             two in one scene yet",
-            sites[other].kind.name()
+            "the incremental engine takes this site but not site {other} (kind '{}'); \
+             the subdivision engine takes both in 'voronoi' mode only: no engine \
+             computes the two in one scene in mode '{}' yet",
+            sites[other].kind.name(),
+            scene.mode().name()
         ),
     ))
 }

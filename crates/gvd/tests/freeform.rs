@@ -783,6 +783,114 @@ fn curves_mix_with_points_circles_and_algebraic_curves() {
     assert_eq!((d.vertices.len(), d.edges.len()), (5, 10));
 }
 
+/// Segments, polylines, arcs and polygons are curves of straight and exact circular
+/// spans to the subdivision engine, so they mix with free-form curves, points and
+/// circles in one `voronoi` scene: `auto` picks it, and `gvd verify` passes the
+/// diagram. Such a site sharing an end with another is refused (a tie over a wedge).
+#[test]
+fn curves_mix_with_segments_polylines_arcs_and_polygons() {
+    let sc = scene("mixed-linear-voronoi.json");
+    let d = run(&sc, Engine::Auto);
+    assert_eq!(d.stats["engine"], "subdivision");
+    assert_eq!(d.cells.len(), sc.sites().len());
+    let report = gvd::verify(&sc, &d, &gvd::VerifyOptions::default()).unwrap();
+    assert!(report.passed, "{report:?}");
+    // every site has a cell that meets another's
+    let pairs = edge_pairs(&d);
+    for i in 0..sc.sites().len() {
+        assert!(
+            pairs.iter().any(|p| p.contains(&i)),
+            "site {i} meets no other"
+        );
+    }
+    // the segment moved to start where the curve ends
+    let mut shared = sc.sites().to_vec();
+    shared[1] = gvd::Site::segment([0.0, 1.5], [1.0, 2.2]);
+    let shared = Scene::new(sc.domain(), sc.epsilon(), sc.mode(), shared).unwrap();
+    let err = compute(&shared, &Options::default()).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            Error::Conflict {
+                site: 0,
+                other: 1,
+                ..
+            }
+        ),
+        "{err}"
+    );
+}
+
+/// The same segments, polyline, arc, polygon and points by the subdivision engine (as
+/// fields: the arc keeps it off the soft-predicate path) and by the exact incremental
+/// engine: the same vertices within epsilon with the same sites, the same edge pairs.
+#[test]
+fn segment_arc_and_polygon_fields_agree_with_the_incremental_engine() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/scenes/linear-arcs-points-voronoi.json");
+    let sc = Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let sub = run(&sc, Engine::Subdivision);
+    let inc = run(&sc, Engine::Incremental);
+    assert_eq!(sub.stats["engine"], "subdivision");
+    assert_eq!(inc.stats["engine"], "incremental");
+    same_vertices(&sub, &inc, sc.epsilon());
+    assert_eq!(edge_pairs(&sub), edge_pairs(&inc));
+}
+
+/// A polygon is solid: the subdivision engine, which sees it by its boundary's
+/// distance, refuses a site that reaches inside it, naming both; in `complex` mode it
+/// refuses segments beside other kinds (their generators there are ends and edges).
+#[test]
+fn the_subdivision_engine_refuses_sites_inside_polygons_and_whole_segments_in_complex_mode() {
+    let text = |mode: &str, arc_radius: f64| {
+        format!(
+            r#"{{"domain": [-2, -2, 2, 2], "epsilon": 0.001, "mode": "{mode}", "sites": [
+            {{"kind": "bezier", "control_points": [[-1, 0], [-0.5, 1], [0.5, -1], [1, 0]]}},
+            {{"kind": "arc", "center": [0, 0], "radius": {arc_radius}, "start_angle": 0.5, "end_angle": 2.5}},
+            {{"kind": "polygon", "rings": [[[1.2, 0.8], [1.6, 0.8], [1.6, 1.2]]]}}]}}"#
+        )
+    };
+    let compute_text = |t: String| {
+        compute(
+            &Scene::from_json(&t).unwrap(),
+            &Options {
+                engine: Engine::Subdivision,
+                ..Default::default()
+            },
+        )
+    };
+    // the arc of radius 1.6 runs through the triangle; at radius 1.3 it passes by
+    match compute_text(text("voronoi", 1.6)) {
+        Err(Error::Conflict {
+            site: 1,
+            other: 2,
+            message,
+        }) => {
+            assert!(message.contains("reaches inside the polygon"), "{message}")
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(compute_text(text("voronoi", 1.3)).is_ok());
+    let circle_and_segment = r#"{"domain": [-2, -2, 2, 2], "mode": "complex", "sites": [
+        {"kind": "circle", "center": [0, 0], "radius": 0.5},
+        {"kind": "segment", "from": [1, -1], "to": [1, 1]}]}"#;
+    for engine in [Engine::Auto, Engine::Subdivision] {
+        let err = compute(
+            &Scene::from_json(circle_and_segment).unwrap(),
+            &Options {
+                engine,
+                ..Default::default()
+            },
+        )
+        .unwrap_err();
+        assert!(
+            matches!(&err, Error::Unsupported { site: 1, .. })
+                && err.to_string().contains("'voronoi' mode only"),
+            "{engine:?}: {err}"
+        );
+    }
+}
+
 /// In `complex` and `medial_axis` modes the subdivision engine computes curves by
 /// their pieces and corners (runs of spans without a ridge of their own, corners as
 /// points, zone boundaries removed): the same vertices as the free-form engine within a

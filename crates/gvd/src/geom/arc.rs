@@ -114,6 +114,31 @@ impl Arc {
     pub fn spans(&self, theta: f64) -> bool {
         self.is_full() || (theta - self.start).rem_euclid(TAU) <= self.sweep
     }
+
+    /// The arc as rational quadratic Bézier spans of at most a quarter turn each, exact
+    /// (Farin02, §13.5): a span of sweep `θ` has its ends on the circle, its middle
+    /// control point where their tangents meet, at `r / cos(θ/2)` from the centre, with
+    /// weight `cos(θ/2)`. The first and last ends are [`ends`](Self::ends), bit for bit.
+    pub fn bezier_spans(&self) -> Vec<super::bezier::RationalBezier> {
+        let count = (self.sweep / FRAC_PI_2).ceil().max(1.0);
+        let step = self.sweep / count;
+        let weight = (0.5 * step).cos();
+        let [first, last] = self.ends();
+        (0..count as usize)
+            .map(|k| {
+                let a = self.start + k as f64 * step;
+                let from = if k == 0 { first } else { self.at_angle(a) };
+                let to = if k + 1 == count as usize {
+                    last
+                } else {
+                    self.at_angle(a + step)
+                };
+                let (s, c) = (a + 0.5 * step).sin_cos();
+                let middle = self.center + Point::new(c, s) * (self.radius / weight);
+                super::bezier::RationalBezier::new(&[from, middle, to], Some(&[1.0, weight, 1.0]))
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]
@@ -159,6 +184,30 @@ mod tests {
         assert!((s - (TAU - 1.0)).abs() < 1e-15);
         assert_eq!(sweep(0.0, TAU), TAU);
         assert_eq!(sweep(0.0, 1.5), 1.5);
+    }
+
+    #[test]
+    fn bezier_spans_lie_on_the_circle_and_share_the_arc_ends() {
+        for (start, end) in [(0.3, 0.4), (0.0, 3.0), (-2.0, 4.0), (1.0, 1.0 + TAU)] {
+            let a = Arc::from_angles(Point::new(0.5, -1.5), 2.0, start, end);
+            let spans = a.bezier_spans();
+            assert_eq!(spans.len(), (a.sweep / (TAU / 4.0)).ceil() as usize);
+            for (k, s) in spans.iter().enumerate() {
+                for i in 0..=16 {
+                    let t = f64::from(i) / 16.0;
+                    let p = s.eval(t);
+                    assert!((p.dist(a.center) - a.radius).abs() < 1e-14, "{p:?}");
+                    // the angle grows along the arc, within the span's share of the sweep
+                    let turned = (p - a.center).y.atan2((p - a.center).x) - a.start;
+                    let share = a.sweep / spans.len() as f64;
+                    let along = (turned - k as f64 * share).rem_euclid(TAU);
+                    assert!(along <= share + 1e-12 || along >= TAU - 1e-12, "{along}");
+                }
+            }
+            let [p, q] = a.ends();
+            assert_eq!(spans[0].eval(0.0), p);
+            assert_eq!(spans.last().unwrap().eval(1.0), q);
+        }
     }
 
     #[test]

@@ -371,6 +371,15 @@ impl Scene {
         polygon_overlap::points_inside_polygons(&self.sites, self.mode)
     }
 
+    /// Refuses a site reaching strictly inside a polygon site, seen at `samples(i)`,
+    /// points along site `i`: for the engines that take a polygon by its boundary.
+    pub(crate) fn refuse_sites_inside_polygons(
+        &self,
+        samples: impl Fn(usize) -> Vec<Point>,
+    ) -> Result<(), Error> {
+        polygon_overlap::sites_inside_polygons(&self.sites, samples)
+    }
+
     /// Checks and builds a scene. Refusals name the field (`domain`, `epsilon`) or the
     /// site index and its field, as for JSON input.
     pub fn new(domain: Aabb, epsilon: f64, mode: Mode, sites: Vec<Site>) -> Result<Scene, Error> {

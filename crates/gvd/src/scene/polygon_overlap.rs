@@ -390,6 +390,43 @@ pub(crate) fn points_inside_polygons(sites: &[Site], mode: Mode) -> Result<(), E
     Ok(())
 }
 
+/// Refuses a site that reaches strictly inside a polygon site (outside its holes), as
+/// seen at `samples(i)`, points along site `i`, naming the site and the first such
+/// polygon: where a polygon is solid and a
+/// subdivision field is its boundary's distance, a site inside it would have a cell
+/// there. Points on a polygon's boundary touch it and pass.
+pub(crate) fn sites_inside_polygons(
+    sites: &[Site],
+    samples: impl Fn(usize) -> Vec<Point>,
+) -> Result<(), Error> {
+    let polygons = polygon_sites(sites);
+    if polygons.is_empty() {
+        return Ok(());
+    }
+    let regions = Regions::new(&polygons, &oriented_edges(&polygons));
+    for i in (0..sites.len()).filter(|&i| !matches!(sites[i].kind, SiteKind::Polygon { .. })) {
+        let mut holder: Option<usize> = None;
+        for q in samples(i) {
+            regions.holding(q, |p| {
+                let site = polygons[p as usize].0;
+                holder = Some(holder.map_or(site, |h| h.min(site)));
+            });
+            if let Some(polygon) = holder {
+                return Err(Error::Conflict {
+                    site: i,
+                    other: polygon,
+                    message: format!(
+                        "the first reaches inside the polygon near ({}, {}): a polygon is \
+                         solid, and the sites of a scene must be disjoint",
+                        q.x, q.y
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The polygon sites, with their site indices.
 fn polygon_sites(sites: &[Site]) -> Vec<(usize, &[Vec<Point>])> {
     sites

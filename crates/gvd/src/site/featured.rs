@@ -93,6 +93,7 @@ impl FeatureFields {
             check_mixed(scene, curve)?;
             out.add_freeform(scene)?;
         }
+        super::refuse_whole_linear_sites(scene)?;
         for (i, s) in scene.sites().iter().enumerate() {
             match &s.kind {
                 k if is_freeform(k) => {}

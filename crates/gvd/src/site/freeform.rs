@@ -1,5 +1,7 @@
 //! A `bezier` or `bspline` site as a distance field of the subdivision engine: the
-//! Euclidean distance to the curve, without approximating it by lines or arcs.
+//! Euclidean distance to the curve, without approximating it by lines or arcs. Segments,
+//! polylines, polygon boundaries and arcs are such curves too (degree-1 spans, and exact
+//! rational quadratic spans): that is how they mix with the other fields.
 //!
 //! The curve's rational Bézier spans (B-splines cut by knot insertion, as the
 //! free-form engine does, HREK07 §7) are split by de Casteljau's algorithm at `t = ½`
@@ -27,10 +29,44 @@ use super::curve_tree::{
 use crate::error::Error;
 use crate::freeform::bisector::SpanForms;
 use crate::freeform::nearest::span_distance;
+use crate::geom::arc::Arc;
 use crate::geom::bezier::RationalBezier;
 use crate::geom::{Aabb, Point};
 use crate::num::interval::{round_down, round_up};
 use crate::num::Interval;
+use crate::scene::SiteKind;
+
+/// The spans of a site drawn as curves: free-form curves (cut at their knots), the edges
+/// of segments, polylines and polygon rings (zero-length edges dropped) and the quarter
+/// turns of arcs; `None` for the other kinds. A polygon's distance is that to its
+/// boundary, which outside it is the distance to the solid polygon.
+pub(crate) fn curve_spans(kind: &SiteKind) -> Option<Vec<RationalBezier>> {
+    let edges = |points: &mut dyn Iterator<Item = (Point, Point)>| -> Vec<RationalBezier> {
+        points
+            .filter(|(a, b)| a != b)
+            .map(|(a, b)| RationalBezier::new(&[a, b], None))
+            .collect()
+    };
+    match kind {
+        SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => {
+            crate::freeform::pieces::site_spans(kind).map(|(spans, _)| spans)
+        }
+        SiteKind::Segment { from, to } => Some(edges(&mut std::iter::once((*from, *to)))),
+        SiteKind::Polyline { points } => Some(edges(&mut points.windows(2).map(|w| (w[0], w[1])))),
+        SiteKind::Polygon { rings } => {
+            Some(edges(&mut rings.iter().flat_map(|ring| {
+                (0..ring.len()).map(move |i| (ring[i], ring[(i + 1) % ring.len()]))
+            })))
+        }
+        SiteKind::Arc {
+            center,
+            radius,
+            start_angle,
+            end_angle,
+        } => Some(Arc::from_angles(*center, *radius, *start_angle, *end_angle).bezier_spans()),
+        _ => None,
+    }
+}
 
 /// Deepest subdivision of a span.
 const MAX_DEPTH: u32 = 40;

@@ -28,7 +28,7 @@ use crate::error::Error;
 use crate::geom::{Aabb, Axis, Point};
 use crate::num::bernstein::Bernstein2;
 use crate::num::Interval;
-use crate::scene::{Metric, Scene, SiteKind};
+use crate::scene::{Metric, Mode, Scene, SiteKind};
 
 /// Bounds over a box of a function `h` whose zero set and sign are those of
 /// `f_a − f_b` (it may be `f_a − f_b` itself or any sign-equivalent form, e.g. the
@@ -218,17 +218,17 @@ impl SiteField {
             SiteKind::Field { equation } => Ok(SiteField::Polynomial(PolynomialField::new(
                 equation.poly().clone(),
             ))),
-            SiteKind::Bezier { .. } | SiteKind::Bspline { .. } => {
-                let (spans, _) = crate::freeform::pieces::site_spans(kind).unwrap_or_default();
+            SiteKind::Bezier { .. }
+            | SiteKind::Bspline { .. }
+            | SiteKind::Segment { .. }
+            | SiteKind::Polyline { .. }
+            | SiteKind::Polygon { .. }
+            | SiteKind::Arc { .. } => {
+                let spans = freeform::curve_spans(kind).unwrap_or_default();
                 Ok(SiteField::Freeform(Box::new(FreeformField::new(
                     index, spans, epsilon,
                 )?)))
             }
-            other => Err(Error::Unsupported {
-                site: index,
-                kind: other.name().to_string(),
-                message: "not supported yet by the subdivision engine".to_string(),
-            }),
         }
     }
 
@@ -239,7 +239,13 @@ impl SiteField {
 
     /// The fields of every site of a scene, with explicit choices.
     /// Algebraic curves learn on which side of each other they lie.
+    /// Segments, polylines, polygons and arcs are whole sites: `voronoi` mode only.
     pub fn for_scene_with(scene: &Scene, options: &FieldOptions) -> Result<Vec<SiteField>, Error> {
+        refuse_whole_linear_sites(scene)?;
+        refuse_shared_ends(scene)?;
+        scene.refuse_sites_inside_polygons(|i| {
+            site_samples(&scene.sites()[i].kind, scene.epsilon())
+        })?;
         let mut fields = scene
             .sites()
             .iter()
@@ -258,6 +264,148 @@ impl SiteField {
         AlgebraicField::find_sides(&mut curves);
         Ok(fields)
     }
+}
+
+/// Refuses segments, polylines, polygons and arcs outside `voronoi` mode: their fields
+/// are whole sites, and the other modes' generators are their ends, edges and corners.
+pub(crate) fn refuse_whole_linear_sites(scene: &Scene) -> Result<(), Error> {
+    if scene.mode() == Mode::Voronoi {
+        return Ok(());
+    }
+    match scene
+        .sites()
+        .iter()
+        .position(|s| is_linear_or_circular(&s.kind))
+    {
+        None => Ok(()),
+        Some(i) => Err(Error::Unsupported {
+            site: i,
+            kind: scene.sites()[i].kind.name().to_string(),
+            message: format!(
+                "the subdivision engine computes segments, polylines, polygons and arcs \
+                 beside other kinds in 'voronoi' mode only, not in '{}' (the incremental \
+                 engine computes them alone in every mode)",
+                scene.mode().name()
+            ),
+        }),
+    }
+}
+
+/// Refuses a segment, polyline, polygon or arc that shares a point (an end, a corner)
+/// with another site: around it both distances are the distance to that point, a tie
+/// over a whole wedge, which these fields do not resolve into one owner.
+fn refuse_shared_ends(scene: &Scene) -> Result<(), Error> {
+    let corners = |kind: &SiteKind| -> Vec<Point> {
+        match kind {
+            SiteKind::Point { at, .. } => vec![*at],
+            SiteKind::Segment { from, to } => vec![*from, *to],
+            SiteKind::Polyline { points } => points.clone(),
+            SiteKind::Polygon { rings } => rings.concat(),
+            SiteKind::Arc {
+                center,
+                radius,
+                start_angle,
+                end_angle,
+            } => crate::geom::arc::Arc::from_angles(*center, *radius, *start_angle, *end_angle)
+                .ends()
+                .to_vec(),
+            kind => freeform::curve_spans(kind)
+                .and_then(|spans| Some(vec![spans.first()?.eval(0.0), spans.last()?.eval(1.0)]))
+                .unwrap_or_default(),
+        }
+    };
+    let mut owner: std::collections::HashMap<(u64, u64), usize> = Default::default();
+    for (i, site) in scene.sites().iter().enumerate() {
+        for p in corners(&site.kind) {
+            let key = ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+            match owner.get(&key) {
+                Some(&j)
+                    if j != i
+                        && (is_linear_or_circular(&site.kind)
+                            || is_linear_or_circular(&scene.sites()[j].kind)) =>
+                {
+                    return Err(Error::Conflict {
+                        site: j,
+                        other: i,
+                        message: format!(
+                            "they share the point ({}, {}), which the subdivision engine \
+                             does not resolve beside segments, polylines, polygons and arcs \
+                             yet (the incremental engine computes such shared ends)",
+                            p.x, p.y
+                        ),
+                    });
+                }
+                _ => {
+                    owner.entry(key).or_insert(i);
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Most points [`site_samples`] takes along one site.
+const MAX_SITE_SAMPLES: usize = 1 << 20;
+
+/// Points along a site, `spacing` apart or closer (up to [`MAX_SITE_SAMPLES`]): the
+/// point itself, points of a circle or an ellipse, of each span of a curve; none for
+/// algebraic curves and fields.
+fn site_samples(kind: &SiteKind, spacing: f64) -> Vec<Point> {
+    let count = |length: f64| ((length / spacing).ceil() as usize).clamp(2, MAX_SITE_SAMPLES);
+    let around = |n: usize, at: &dyn Fn(f64) -> Point| -> Vec<Point> {
+        (0..n)
+            .map(|k| at(std::f64::consts::TAU * k as f64 / n as f64))
+            .collect()
+    };
+    match kind {
+        SiteKind::Point { at, .. } => vec![*at],
+        SiteKind::Circle { center, radius } => {
+            around(count(std::f64::consts::TAU * radius), &|a: f64| {
+                *center + Point::new(a.cos(), a.sin()) * *radius
+            })
+        }
+        SiteKind::Ellipse {
+            center,
+            semi_axes,
+            rotation,
+        } => {
+            let (s, c) = rotation.sin_cos();
+            around(
+                count(std::f64::consts::TAU * semi_axes[0].max(semi_axes[1])),
+                &|a: f64| {
+                    let (x, y) = (semi_axes[0] * a.cos(), semi_axes[1] * a.sin());
+                    *center + Point::new(c * x - s * y, s * x + c * y)
+                },
+            )
+        }
+        _ => {
+            let spans = freeform::curve_spans(kind).unwrap_or_default();
+            let per_span = MAX_SITE_SAMPLES / spans.len().max(1);
+            spans
+                .iter()
+                .flat_map(|span| {
+                    let hull: f64 = span
+                        .control_points()
+                        .windows(2)
+                        .map(|w| w[0].dist(w[1]))
+                        .sum();
+                    span.sample(count(hull).min(per_span.max(2)))
+                })
+                .collect()
+        }
+    }
+}
+
+/// Whether a site is a segment, polyline, polygon or arc: a field of the subdivision
+/// engine as a curve of straight and circular spans.
+pub fn is_linear_or_circular(kind: &SiteKind) -> bool {
+    matches!(
+        kind,
+        SiteKind::Segment { .. }
+            | SiteKind::Polyline { .. }
+            | SiteKind::Polygon { .. }
+            | SiteKind::Arc { .. }
+    )
 }
 
 /// [`DistanceField`] for [`SiteField`], delegating to each family: `$variant` names

@@ -284,17 +284,7 @@ impl FreeformField {
     /// The nearest point of the curve to `q`, the unit tangent there, and which end of
     /// the curve it is (0: the start, 1: the end), if one.
     pub fn foot(&self, q: Point) -> Option<(Point, Point, Option<usize>)> {
-        let mut best: Option<(f64, usize, f64)> = None;
-        for (k, c) in self.spans.iter().enumerate() {
-            if best.is_some_and(|(d, _, _)| self.span_boxes[k].outside_distance(q) >= d) {
-                continue;
-            }
-            let (d, t) = span_distance(c, &self.forms[k], q);
-            if best.is_none_or(|(b, _, _)| d < b) {
-                best = Some((d, k, t));
-            }
-        }
-        let (_, k, t) = best?;
+        let (_, k, t) = self.nearest_span(q, 0..self.spans.len())?;
         let c = &self.spans[k];
         let end = if k == 0 && t == 0.0 {
             Some(0)
@@ -320,15 +310,26 @@ impl FreeformField {
         }
         spans.sort_unstable();
         spans.dedup();
-        let mut best = (f64::INFINITY, q);
+        self.nearest_span(q, spans.into_iter().map(|k| k as usize))
+            .map_or((f64::INFINITY, q), |(d, k, t)| (d, self.spans[k].eval(t)))
+    }
+
+    /// Among `spans`, the distance from `q`, the span and the parameter of the nearest
+    /// point (the first span of least distance); a span whose box is no nearer than the
+    /// best so far is skipped.
+    fn nearest_span(
+        &self,
+        q: Point,
+        spans: impl Iterator<Item = usize>,
+    ) -> Option<(f64, usize, f64)> {
+        let mut best: Option<(f64, usize, f64)> = None;
         for k in spans {
-            let c = &self.spans[k as usize];
-            if self.span_boxes[k as usize].outside_distance(q) >= best.0 {
+            if best.is_some_and(|(d, _, _)| self.span_boxes[k].outside_distance(q) >= d) {
                 continue;
             }
-            let (d, t) = span_distance(c, &self.forms[k as usize], q);
-            if d < best.0 {
-                best = (d, c.eval(t));
+            let (d, t) = span_distance(&self.spans[k], &self.forms[k], q);
+            if best.is_none_or(|(b, _, _)| d < b) {
+                best = Some((d, k, t));
             }
         }
         best

@@ -225,15 +225,26 @@ fn crossing_sites_and_small_budgets_are_refused() {
 
 #[test]
 fn mixed_scenes_go_to_the_distance_field_engine_which_names_the_site() {
-    // a mixed scene goes to the distance-field engine, which names the site it cannot take
-    let mixed = inline(
-        r#"{"domain":[-2,-2,2,2],"sites":[{"kind":"segment","from":[-1,0],"to":[1,0]},{"kind":"point","at":[0,1]}]}"#,
-    );
+    // a mixed scene goes to the distance-field engine: it takes the segment as a whole
+    // site in `voronoi` mode, and names it in `complex` mode, where it cannot
+    let mixed = |mode: &str| {
+        inline(&format!(
+            r#"{{"domain":[-2,-2,2,2],"mode":"{mode}","sites":[{{"kind":"segment","from":[-1,0],"to":[1,0]}},{{"kind":"point","at":[0,1]}}]}}"#
+        ))
+    };
     let o = Options {
         engine: Engine::Subdivision,
         ..Default::default()
     };
-    let e = compute(&mixed, &o).unwrap_err();
+    let d = compute(&mixed("voronoi"), &o).unwrap();
+    assert_eq!(d.stats["engine"], "subdivision");
+    assert!(
+        d.stats.get("algorithm").is_none(),
+        "not the soft-predicate path"
+    );
+    let report = gvd::verify(&mixed("voronoi"), &d, &gvd::VerifyOptions::default()).unwrap();
+    assert!(report.passed, "{report:?}");
+    let e = compute(&mixed("complex"), &o).unwrap_err();
     assert!(e.to_string().contains("site 0"), "{e}");
 }
 

@@ -115,28 +115,27 @@ impl Piece {
 
     /// Splits at the midpoint, or at `3/8` / `5/8` of the piece when the value at the
     /// midpoint is within `err` of zero (a root there could never be certified), as long
-    /// as the ends stay exact. `None` when the piece is too short to split exactly.
+    /// as the ends stay exact. `None` when the piece is too short to split exactly. The
+    /// values at `3/8`, `5/8` are those the splits there would give (the same de Casteljau
+    /// steps): only the split taken is formed.
     fn split(&self, spare: &mut Spare) -> Option<(Piece, Piece)> {
         let len = self.hi - self.lo;
         if len & 1 != 0 {
             return None;
         }
-        let near_zero = |r: &Bernstein1| r.coef[0].abs() <= r.err;
+        let near_zero = |value: f64, err: f64| value.abs() <= err;
         let (mut l, mut r) = (spare.take(), spare.take());
         self.f.split_into(0.5, &mut l, &mut r);
         let mut at = self.lo + len / 2;
-        if near_zero(&r) && len & 7 == 0 {
-            let (mut l2, mut r2) = (spare.take(), spare.take());
-            for k in [3, 5] {
-                self.f.split_into(k as f64 / 8.0, &mut l2, &mut r2);
-                if !near_zero(&r2) {
-                    std::mem::swap(&mut l, &mut l2);
-                    std::mem::swap(&mut r, &mut r2);
-                    at = self.lo + len / 8 * k;
-                    break;
-                }
+        if near_zero(r.coef[0], r.err) && len & 7 == 0 {
+            let err = r.err;
+            if let Some(k) = [3, 5]
+                .into_iter()
+                .find(|&k| !near_zero(self.f.eval(k as f64 / 8.0), err))
+            {
+                self.f.split_into(k as f64 / 8.0, &mut l, &mut r);
+                at = self.lo + len / 8 * k;
             }
-            spare.0.extend([l2, r2]);
         }
         Some((
             Piece {

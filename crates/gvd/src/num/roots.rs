@@ -333,6 +333,11 @@ pub fn refine_by_newton(b: &Bernstein1, mut lo: f64, mut hi: f64) -> f64 {
             lo = x;
         }
         let newton = x - f / slope;
+        if newton == x {
+            // the step is below rounding: `x` is the root to within an ulp (the step
+            // would otherwise fall on the bracket's end `x` and bisect the bracket on)
+            return x;
+        }
         let next = if newton > lo && newton < hi && (2.0 * f).abs() <= (step_before * slope).abs() {
             newton
         } else {

@@ -860,7 +860,8 @@ fn inner_jacobian(forms: [&Bernstein2; 2], b: &Aabb) -> Option<[Interval; 4]> {
             // h.lo / s at most lo, h.hi / s at least hi for every s in `side`
             let lo = Interval::point(h.lo).div(side)?.hi;
             let hi = Interval::point(h.hi).div(side)?.lo;
-            if !(lo <= hi) {
+            // (a NaN passes here and is refused by the image's finiteness test)
+            if lo > hi {
                 return None;
             }
             j[2 * row + col] = Interval::new(lo, hi);

@@ -364,10 +364,17 @@ impl View<'_> {
 
     /// `self.derivative(axis).range()` without forming the derivative.
     fn derivative_range(self, axis: usize) -> Interval {
-        let (outer, n, inner) = layout(self.deg, axis);
+        let (_, n, _) = layout(self.deg, axis);
         if n == 0 {
             return self.derivative(axis).view().range();
         }
+        self.derivative_hull(axis).range()
+    }
+
+    /// The least and largest coefficient of `self.derivative(axis)` and its error bound,
+    /// without forming it (degree `n ≥ 1` along `axis`).
+    fn derivative_hull(self, axis: usize) -> CoefficientHull {
+        let (outer, n, inner) = layout(self.deg, axis);
         let nf = n as f64;
         let stride = (n + 1) * inner;
         let (mut lo, mut hi, mut nan) = (f64::INFINITY, f64::NEG_INFINITY, false);
@@ -379,7 +386,7 @@ impl View<'_> {
         }
         let m = max_abs(self.coef);
         let err = round_up(2.0 * nf * self.err + 3.0 * nf * EPS * (m + self.err) + TINY);
-        interval_of(lo, hi, nan, err)
+        CoefficientHull { lo, hi, nan, err }
     }
 
     /// Degree elevation to `to ≥ deg` (per axis):
@@ -501,6 +508,35 @@ impl View<'_> {
         let prop = ma * eb + mb * ea + ea * eb;
         let err = round_up(prop * (1.0 + k * EPS) + k * EPS * ma * mb + TINY);
         Form { deg, coef, err }
+    }
+}
+
+/// The least (`lo`) and largest (`hi`) computed coefficient of a form, whether one is
+/// NaN, and the form's error bound `err`: every exact coefficient `β_k` is within `err`
+/// of its computed value.
+#[derive(Clone, Copy, Debug)]
+pub struct CoefficientHull {
+    lo: f64,
+    hi: f64,
+    nan: bool,
+    err: f64,
+}
+
+impl CoefficientHull {
+    /// `[lo − err, hi + err]`, outward-rounded: it holds every exact coefficient, so the
+    /// polynomial's values over the box.
+    pub fn range(&self) -> Interval {
+        interval_of(self.lo, self.hi, self.nan, self.err)
+    }
+
+    /// `[lo + err, hi − err]`, inward-rounded, when not empty: inside the hull of the
+    /// exact coefficients (their least is at most `lo + err`, their largest at least
+    /// `hi − err`). Bernstein coefficients over a sub-box are convex combinations of
+    /// those over the box, so this lies inside the range of the polynomial's form over
+    /// any box holding this one, however that form was computed.
+    pub fn inner(&self) -> Option<Interval> {
+        let (lo, hi) = (round_up(self.lo + self.err), round_down(self.hi - self.err));
+        (!self.nan && lo.is_finite() && hi.is_finite() && lo <= hi).then(|| Interval::new(lo, hi))
     }
 }
 
@@ -1003,6 +1039,12 @@ impl Bernstein2 {
     /// The range of `self.derivative(axis)` (the same enclosure, without forming it).
     pub fn derivative_range(&self, axis: Axis) -> Interval {
         self.view().derivative_range(axis_index(axis))
+    }
+
+    /// The coefficient hull of `self.derivative(axis)` (without forming it); `None` for
+    /// degree 0 along `axis`.
+    pub fn derivative_hull(&self, axis: Axis) -> Option<CoefficientHull> {
+        (self.deg[axis_index(axis)] > 0).then(|| self.view().derivative_hull(axis_index(axis)))
     }
 
     /// The same polynomial at degrees `to ≥ deg`.

@@ -115,28 +115,27 @@ impl Piece {
 
     /// Splits at the midpoint, or at `3/8` / `5/8` of the piece when the value at the
     /// midpoint is within `err` of zero (a root there could never be certified), as long
-    /// as the ends stay exact. `None` when the piece is too short to split exactly.
+    /// as the ends stay exact. `None` when the piece is too short to split exactly. The
+    /// values at `3/8`, `5/8` are those the splits there would give (the same de Casteljau
+    /// steps): only the split taken is formed.
     fn split(&self, spare: &mut Spare) -> Option<(Piece, Piece)> {
         let len = self.hi - self.lo;
         if len & 1 != 0 {
             return None;
         }
-        let near_zero = |r: &Bernstein1| r.coef[0].abs() <= r.err;
+        let near_zero = |value: f64, err: f64| value.abs() <= err;
         let (mut l, mut r) = (spare.take(), spare.take());
         self.f.split_into(0.5, &mut l, &mut r);
         let mut at = self.lo + len / 2;
-        if near_zero(&r) && len & 7 == 0 {
-            let (mut l2, mut r2) = (spare.take(), spare.take());
-            for k in [3, 5] {
-                self.f.split_into(k as f64 / 8.0, &mut l2, &mut r2);
-                if !near_zero(&r2) {
-                    std::mem::swap(&mut l, &mut l2);
-                    std::mem::swap(&mut r, &mut r2);
-                    at = self.lo + len / 8 * k;
-                    break;
-                }
+        if near_zero(r.coef[0], r.err) && len & 7 == 0 {
+            let err = r.err;
+            if let Some(k) = [3, 5]
+                .into_iter()
+                .find(|&k| !near_zero(self.f.eval(k as f64 / 8.0), err))
+            {
+                self.f.split_into(k as f64 / 8.0, &mut l, &mut r);
+                at = self.lo + len / 8 * k;
             }
-            spare.0.extend([l2, r2]);
         }
         Some((
             Piece {
@@ -334,6 +333,11 @@ pub fn refine_by_newton(b: &Bernstein1, mut lo: f64, mut hi: f64) -> f64 {
             lo = x;
         }
         let newton = x - f / slope;
+        if newton == x {
+            // the step is below rounding: `x` is the root to within an ulp (the step
+            // would otherwise fall on the bracket's end `x` and bisect the bracket on)
+            return x;
+        }
         let next = if newton > lo && newton < hi && (2.0 * f).abs() <= (step_before * slope).abs() {
             newton
         } else {
@@ -546,7 +550,13 @@ pub fn solve_systems(
             }
             let system = [f, run.g];
             let outcome = if may_contract(forms, &sb.b) {
-                krawczyk(system, &run.jacobian, &x, &mut f_over_x)
+                krawczyk(
+                    system,
+                    &run.jacobian,
+                    &x,
+                    Some((forms, &sb.b)),
+                    &mut f_over_x,
+                )
             } else {
                 Krawczyk::Unknown
             };
@@ -702,17 +712,33 @@ enum Krawczyk {
     Unknown,
 }
 
-/// The Krawczyk test of the system over `x` (see [`solve_system`]).
+/// The Krawczyk test of the system over `x` (see [`solve_system`]). With `screen`, the
+/// forms of `f` and `g` over a box `b ⊆ x`, first, without converting anything, the
+/// operator with the Jacobian's inner intervals from those forms ([`inner_jacobian`]):
+/// that image lies inside the test's own `K(X)` (interval arithmetic is inclusion
+/// monotone), so when it already sticks out of `int X` and meets `X`, `K(X)` does too and
+/// the test can only answer `Unknown`: it is not run.
 fn krawczyk(
     system: [&Poly; 2],
     jacobian: &[Poly; 4],
     x: &Aabb,
+    screen: Option<([&Bernstein2; 2], &Aabb)>,
     f_over_x: &mut Option<Bernstein2>,
 ) -> Krawczyk {
-    let Some(kb) = krawczyk_image(system, jacobian, x, f_over_x) else {
+    let Some(centre) = KrawczykCentre::new(system, jacobian, x) else {
         return Krawczyk::Unknown;
     };
-    if kb.min.x > x.min.x && kb.max.x < x.max.x && kb.min.y > x.min.y && kb.max.y < x.max.y {
+    let undecided = |k: &Aabb| !strictly_inside(k, x) && k.intersection(x).is_some();
+    let inner = screen.and_then(|(forms, b)| centre.image(x, &inner_jacobian(forms, b)?));
+    if inner.is_some_and(|k| undecided(&k)) {
+        return Krawczyk::Unknown;
+    }
+    let Some(kb) =
+        interval_jacobian(system, jacobian, x, f_over_x).and_then(|j| centre.image(x, &j))
+    else {
+        return Krawczyk::Unknown;
+    };
+    if strictly_inside(&kb, x) {
         Krawczyk::Unique {
             region: *x,
             enclosure: kb,
@@ -722,6 +748,11 @@ fn krawczyk(
     } else {
         Krawczyk::Unknown
     }
+}
+
+/// True when `k` lies in the interior of `x`.
+fn strictly_inside(k: &Aabb, x: &Aabb) -> bool {
+    k.min.x > x.min.x && k.max.x < x.max.x && k.min.y > x.min.y && k.max.y < x.max.y
 }
 
 /// Shrinks the enclosure of a certified root: every root in `X` lies in `K(X) ∩ X`,
@@ -741,6 +772,62 @@ fn contract(system: [&Poly; 2], jacobian: &[Poly; 4], mut x: Aabb) -> Aabb {
     x
 }
 
+/// What the Krawczyk operator over a box needs besides the interval Jacobian: the
+/// centre `m`, `F(m)` enclosed, `Y ≈ J(m)⁻¹`.
+struct KrawczykCentre {
+    m: Point,
+    fm: [Interval; 2],
+    y: [Interval; 4],
+}
+
+impl KrawczykCentre {
+    /// `None` where the Jacobian at the centre is singular (or not finite).
+    fn new(system: [&Poly; 2], jacobian: &[Poly; 4], x: &Aabb) -> Option<Self> {
+        let m = x.center();
+        let (mx, my) = (Interval::point(m.x), Interval::point(m.y));
+        let zero = Interval::point(0.0);
+        let fm = [
+            system[0].eval_interval(mx, my, zero),
+            system[1].eval_interval(mx, my, zero),
+        ];
+        let jm: Vec<f64> = jacobian.iter().map(|p| p.eval(m.x, m.y, 0.0)).collect();
+        let det = jm[0] * jm[3] - jm[1] * jm[2];
+        if !(det.is_finite() && det != 0.0) {
+            return None;
+        }
+        let y = [jm[3] / det, -jm[1] / det, -jm[2] / det, jm[0] / det].map(Interval::point);
+        Some(KrawczykCentre { m, fm, y })
+    }
+
+    /// `K(X)` with the interval Jacobian `j` as a box; `None` where something is not
+    /// finite.
+    fn image(&self, x: &Aabb, j: &[Interval; 4]) -> Option<Aabb> {
+        let finite = |i: &Interval| i.lo.is_finite() && i.hi.is_finite();
+        if !self.fm.iter().chain(j).all(finite) {
+            return None;
+        }
+        let (m, y) = (self.m, &self.y);
+        let zero = Interval::point(0.0);
+        let d = [x.x() - m.x, x.y() - m.y];
+        let one = Interval::point(1.0);
+        // row r of K: m_r − (Y F(m))_r + Σ_c (δ_rc − (Y J)_rc) d_c
+        let mut k = [zero; 2];
+        for (r, kr) in k.iter_mut().enumerate() {
+            let yf = y[2 * r] * self.fm[0] + y[2 * r + 1] * self.fm[1];
+            let mut acc = Interval::point(if r == 0 { m.x } else { m.y }) - yf;
+            for (c, dc) in d.iter().enumerate() {
+                let yj = y[2 * r] * j[c] + y[2 * r + 1] * j[2 + c];
+                let delta = if r == c { one } else { zero };
+                acc = acc + (delta - yj) * *dc;
+            }
+            *kr = acc;
+        }
+        k.iter()
+            .all(finite)
+            .then(|| Aabb::new(Point::new(k[0].lo, k[1].lo), Point::new(k[0].hi, k[1].hi)))
+    }
+}
+
 /// The Krawczyk image `K(X)` as a box; `None` where it cannot be formed (a singular
 /// Jacobian at the centre, or overflow). `f_over_x` holds `f`'s form over `x` once made.
 fn krawczyk_image(
@@ -749,41 +836,38 @@ fn krawczyk_image(
     x: &Aabb,
     f_over_x: &mut Option<Bernstein2>,
 ) -> Option<Aabb> {
-    let m = x.center();
-    let (mx, my) = (Interval::point(m.x), Interval::point(m.y));
-    let zero = Interval::point(0.0);
-    let fm = [
-        system[0].eval_interval(mx, my, zero),
-        system[1].eval_interval(mx, my, zero),
-    ];
-    let jm: Vec<f64> = jacobian.iter().map(|p| p.eval(m.x, m.y, 0.0)).collect();
-    let det = jm[0] * jm[3] - jm[1] * jm[2];
-    if !(det.is_finite() && det != 0.0) {
-        return None;
-    }
+    let centre = KrawczykCentre::new(system, jacobian, x)?;
     let j = interval_jacobian(system, jacobian, x, f_over_x)?;
-    let finite = |i: &Interval| i.lo.is_finite() && i.hi.is_finite();
-    if !fm.iter().chain(&j).all(finite) {
+    centre.image(x, &j)
+}
+
+/// Intervals inside the enclosures of `f_x, f_y, g_x, g_y` that [`interval_jacobian`]
+/// gives over any box holding `b`, from `forms`, those of `f` and `g` over `b`: the inner
+/// intervals of their derivatives' coefficient hulls ([`CoefficientHull::inner`](crate::num::bernstein::CoefficientHull::inner)) divided
+/// by `b`'s sides, rounded inward. `None` when one is empty or `b` is flat.
+fn inner_jacobian(forms: [&Bernstein2; 2], b: &Aabb) -> Option<[Interval; 4]> {
+    let sides = [
+        Interval::point(b.max.x) - Interval::point(b.min.x),
+        Interval::point(b.max.y) - Interval::point(b.min.y),
+    ];
+    if !sides.iter().all(|s| s.lo > 0.0 && s.hi.is_finite()) {
         return None;
     }
-    let y = [jm[3] / det, -jm[1] / det, -jm[2] / det, jm[0] / det].map(Interval::point);
-    let d = [x.x() - m.x, x.y() - m.y];
-    let one = Interval::point(1.0);
-    // row r of K: m_r − (Y F(m))_r + Σ_c (δ_rc − (Y J)_rc) d_c
-    let mut k = [zero; 2];
-    for (r, kr) in k.iter_mut().enumerate() {
-        let yf = y[2 * r] * fm[0] + y[2 * r + 1] * fm[1];
-        let mut acc = Interval::point(if r == 0 { m.x } else { m.y }) - yf;
-        for (c, dc) in d.iter().enumerate() {
-            let yj = y[2 * r] * j[c] + y[2 * r + 1] * j[2 + c];
-            let delta = if r == c { one } else { zero };
-            acc = acc + (delta - yj) * *dc;
+    let mut j = [Interval::point(0.0); 4];
+    for (row, form) in forms.into_iter().enumerate() {
+        for (col, (axis, side)) in [Axis::X, Axis::Y].into_iter().zip(sides).enumerate() {
+            let h = form.derivative_hull(axis)?.inner()?;
+            // h.lo / s at most lo, h.hi / s at least hi for every s in `side`
+            let lo = Interval::point(h.lo).div(side)?.hi;
+            let hi = Interval::point(h.hi).div(side)?.lo;
+            // (a NaN passes here and is refused by the image's finiteness test)
+            if lo > hi {
+                return None;
+            }
+            j[2 * row + col] = Interval::new(lo, hi);
         }
-        *kr = acc;
     }
-    k.iter()
-        .all(finite)
-        .then(|| Aabb::new(Point::new(k[0].lo, k[1].lo), Point::new(k[0].hi, k[1].hi)))
+    Some(j)
 }
 
 /// Enclosures of `f_x, f_y, g_x, g_y` over `x`: the ranges of the derivatives of the
@@ -1051,6 +1135,98 @@ mod system_tests {
 
     fn poly(s: &str) -> Poly {
         Poly::parse(s, &['x', 'y']).unwrap()
+    }
+
+    /// The boxes of a 6 × 6 grid over `[-1, 1]²` and their quarters.
+    fn boxes() -> Vec<Aabb> {
+        let mut out = Vec::new();
+        for i in 0..6 {
+            for j in 0..6 {
+                let (x, y) = (-1.0 + i as f64 / 3.0, -1.0 + j as f64 / 3.0);
+                let b = Aabb::from_array([x, y, x + 1.0 / 3.0, y + 1.0 / 3.0]);
+                let (l, h) = b.split(Axis::X, b.center().x);
+                out.extend([b, l, h]);
+                out.extend([l, h].iter().flat_map(|q| {
+                    let (a, c) = q.split(Axis::Y, q.center().y);
+                    [a, c]
+                }));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn inner_jacobian_lies_inside_the_jacobian_over_a_larger_box() {
+        let (f, g) = (
+            poly("x^3*y - 2*x*y^2 + y^3 - 0.3*x + 0.1"),
+            poly("x^2 + y^2 - x*y^3 - 0.5"),
+        );
+        let jacobian = [f.partial(0), f.partial(1), g.partial(0), g.partial(1)];
+        let mut checked = 0;
+        for b in boxes() {
+            let forms = [Bernstein2::from_poly(&f, &b), Bernstein2::from_poly(&g, &b)];
+            let Some(inner) = inner_jacobian([&forms[0], &forms[1]], &b) else {
+                continue;
+            };
+            checked += 1;
+            let x = inflate(&b, 0.25);
+            let outer = interval_jacobian([&f, &g], &jacobian, &x, &mut None).unwrap();
+            for (i, o) in inner.iter().zip(&outer) {
+                assert!(o.lo <= i.lo && i.hi <= o.hi, "{b:?}: {i} not in {o}");
+            }
+        }
+        assert!(checked > 100, "only {checked} boxes had inner intervals");
+    }
+
+    #[test]
+    fn the_krawczyk_screen_answers_unknown_only_where_the_test_does() {
+        let (f, g) = (poly("x^2 + y^2 - 0.5"), poly("x*y - 0.2 + 0.1*x^3"));
+        let jacobian = [f.partial(0), f.partial(1), g.partial(0), g.partial(1)];
+        let (mut screened, mut decided) = (0, 0);
+        for b in boxes() {
+            let forms = [Bernstein2::from_poly(&f, &b), Bernstein2::from_poly(&g, &b)];
+            let x = inflate(&b, 0.25);
+            let full = krawczyk([&f, &g], &jacobian, &x, None, &mut None);
+            let with = krawczyk(
+                [&f, &g],
+                &jacobian,
+                &x,
+                Some(([&forms[0], &forms[1]], &b)),
+                &mut None,
+            );
+            let same = match (&full, &with) {
+                (
+                    Krawczyk::Unique {
+                        region: r0,
+                        enclosure: e0,
+                    },
+                    Krawczyk::Unique {
+                        region: r1,
+                        enclosure: e1,
+                    },
+                ) => r0 == r1 && e0 == e1,
+                (Krawczyk::NoRoot, Krawczyk::NoRoot) | (Krawczyk::Unknown, Krawczyk::Unknown) => {
+                    true
+                }
+                _ => false,
+            };
+            assert!(same, "{b:?}");
+            if matches!(full, Krawczyk::Unknown) {
+                let centre = KrawczykCentre::new([&f, &g], &jacobian, &x).unwrap();
+                let inner =
+                    inner_jacobian([&forms[0], &forms[1]], &b).and_then(|j| centre.image(&x, &j));
+                screened += inner
+                    .is_some_and(|k| !strictly_inside(&k, &x) && k.intersection(&x).is_some())
+                    as usize;
+            } else {
+                decided += 1;
+            }
+        }
+        // the screen does spare tests, and the others still decide boxes
+        assert!(
+            screened > 20 && decided > 20,
+            "{screened} screened, {decided} decided"
+        );
     }
 
     fn solve(f: &str, g: &str, d: [f64; 4]) -> Vec<SystemRoot> {

@@ -6,6 +6,7 @@
 //! (`parse.rs`) is a thin reader on top.
 
 mod check;
+mod curve_contacts;
 mod parse;
 mod polygon_overlap;
 mod scale;
@@ -369,6 +370,13 @@ impl Scene {
     /// (checked per run: the mode may change after the scene is built).
     pub(crate) fn refuse_points_inside_polygons(&self) -> Result<(), Error> {
         polygon_overlap::points_inside_polygons(&self.sites, self.mode)
+    }
+
+    /// Refuses free-form curves that cross or touch other than end to end in the modes
+    /// where they bound regions (checked per run: the mode may change after the scene
+    /// is built).
+    pub(crate) fn refuse_crossing_curves(&self) -> Result<(), Error> {
+        curve_contacts::crossing_curves(&self.domain, self.mode, &self.sites)
     }
 
     /// Checks and builds a scene. Refusals name the field (`domain`, `epsilon`) or the

@@ -139,13 +139,9 @@ pub fn compute_with(
                         } else {
                             bisector::normals_meet(ca, t, cb, r)?
                         };
-                        // the nearer foot: the branch's root `r` is rounded, most near
-                        // a ridge's end where `F3` is flat, and the two distances then
-                        // differ by more than the envelope's tolerance; measured from
-                        // the farther foot, the nearer one's own span was "nearer"
                         Some(Eval {
                             p,
-                            d: p.dist(ca.eval(t)).min(p.dist(cb.eval(r))),
+                            d: 0.5 * (p.dist(ca.eval(t)) + p.dist(cb.eval(r))),
                             feet: [Some(t), Some(r)],
                             at_ends: false,
                         })

@@ -22,8 +22,7 @@ use crate::geom::{segment_distance, Aabb, Point};
 pub struct Eval {
     /// The bisector point.
     pub p: Point,
-    /// Its distance to the two features (the nearer foot's, where rounding leaves them
-    /// apart).
+    /// Its distance to both features.
     pub d: f64,
     /// Foot parameters on the first and second feature (`None` for corners).
     pub feet: [Option<f64>; 2],

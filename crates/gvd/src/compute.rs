@@ -179,6 +179,7 @@ fn run_engine(scene: &Scene, options: &Options) -> Result<Computation, Error> {
     let watch = Watch::start(&options.control)?;
     check_medial_axis(scene)?;
     scene.refuse_points_inside_polygons()?;
+    scene.refuse_crossing_curves()?;
     if options.engine == Engine::Freeform
         || (options.engine == Engine::Auto && crate::freeform::supports(scene))
     {

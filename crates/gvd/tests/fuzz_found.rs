@@ -253,11 +253,20 @@ fn verify_takes_an_intrusion_within_rounding_as_none() {
 fn a_free_form_medial_axis_of_curves_that_bound_nothing_is_refused() {
     // Four Bézier curves joined into a loop, one end moved off the loop (to y = 5e-324):
     // the chain no longer closes, and the medial axis was written outside any region.
+    // The moved end's curve also runs through site 3, which is refused first.
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/freeform/freeform-bezier4-medial_axis.json");
     let mut v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     v["sites"][0]["control_points"][0][1] = serde_json::json!(5e-324);
+    let sc = Scene::from_value(&v).unwrap();
+    match compute(&sc, &Options::default()) {
+        Err(e) => assert_eq!(e.field(), Some("control_points"), "{e}"),
+        Ok(d) => panic!("{} edges outside any region", d.edges.len()),
+    }
+    // without the crossing (the end moved along the curve's own line, off the loop)
+    // the chain still does not close
+    v["sites"][0]["control_points"][0] = serde_json::json!([-1.154465313655782, -1.3]);
     let sc = Scene::from_value(&v).unwrap();
     match compute(&sc, &Options::default()) {
         Err(e) => assert_eq!(e.field(), Some("mode"), "{e}"),
@@ -443,5 +452,111 @@ fn collinear_points_below_f64s_resolution_are_floored_by_both_engines() {
         );
         let report = verify(&sc, &d, &grid64()).unwrap();
         assert!(report.passed, "{engine:?}: {}", report.summary_line());
+    }
+}
+
+/// The glyph of 20 joined cubic Bézier sites, the middle control point of site 2's
+/// rising flank moved to height `y` (the glyph has 0.620384 there).
+fn glyph20_moved(y: f64) -> serde_json::Value {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/freeform/freeform-glyph20-medial_axis.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    v["sites"][2]["control_points"][2][1] = serde_json::json!(y);
+    v
+}
+
+/// Whether the closed outline of the scene's cubic Béziers (taken in order) crosses
+/// itself: each cubic as a polyline of `n` chords (Bernstein form), every pair of
+/// chords that are not neighbours tested for a proper crossing. Independent of the
+/// library's check; clear crossings only.
+fn outline_crosses(v: &serde_json::Value, n: usize) -> bool {
+    let mut ring: Vec<[f64; 2]> = Vec::new();
+    for site in v["sites"].as_array().unwrap() {
+        let p: Vec<[f64; 2]> = site["control_points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|q| [q[0].as_f64().unwrap(), q[1].as_f64().unwrap()])
+            .collect();
+        for k in 0..n {
+            let t = k as f64 / n as f64;
+            let b = [
+                (1.0 - t).powi(3),
+                3.0 * t * (1.0 - t).powi(2),
+                3.0 * t * t * (1.0 - t),
+                t.powi(3),
+            ];
+            ring.push([0, 1].map(|c| (0..4).map(|i| b[i] * p[i][c]).sum()));
+        }
+    }
+    let m = ring.len();
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    (0..m).any(|i| {
+        let (a, b) = (ring[i], ring[(i + 1) % m]);
+        (i + 2..m).filter(|&j| (j + 1) % m != i).any(|j| {
+            let (c, d) = (ring[j], ring[(j + 1) % m]);
+            cross(a, b, c) * cross(a, b, d) < 0.0 && cross(c, d, a) * cross(c, d, b) < 0.0
+        })
+    })
+}
+
+#[test]
+fn free_form_curves_that_cross_are_refused_where_they_bound_regions() {
+    // The glyph with a control point moved to 5e-324 (fuzz_mutate.py): site 2 now
+    // crosses site 1 near (0.574, 0.403). The medial axis came out with loose edge ends
+    // and edges outside the region (sound 0.988, complete 0.81); both engines now
+    // refuse the scene in the modes where curves bound regions, naming site 2.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/fuzz/glyph20-control-point-y5e-324.json");
+    let sc = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for mode in [gvd::Mode::MedialAxis, gvd::Mode::Complex] {
+        for engine in [Engine::Auto, Engine::Freeform, Engine::Subdivision] {
+            let options = Options {
+                engine,
+                ..Default::default()
+            };
+            match compute(&sc.clone().with_mode(mode), &options) {
+                Err(Error::Site {
+                    site,
+                    field,
+                    message,
+                }) => {
+                    assert_eq!((site, field.as_str()), (2, "control_points"), "{message}");
+                    assert!(message.contains("touches site 1"), "{message}");
+                }
+                other => panic!("{mode:?} {engine:?}: {:?}", other.map(|d| d.edges.len())),
+            }
+        }
+    }
+    // in `voronoi` mode crossing curves are sites like any others
+    let voronoi = sc.with_mode(gvd::Mode::Voronoi);
+    let d = compute(&voronoi, &Options::default()).unwrap();
+    let report = verify(&voronoi, &d, &grid64()).unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}
+
+#[test]
+fn a_moved_control_point_is_refused_exactly_where_the_outline_crosses() {
+    // Moving the control point down first makes the flank a thin finger (a tip of
+    // curvature radius 4e-5 at y = 0.3), then a loop of site 2 itself (0.29 to 0.2),
+    // then a crossing of site 1 (0.15 and below). Not here: the valid outlines at
+    // y = 0.3 to 0.36, whose medial axes still fail verify (docs/FUZZING.md).
+    for y in [0.62, 0.5, 0.4, 0.25, 0.2, 0.1, 0.0, -0.2, 5e-324] {
+        let v = glyph20_moved(y);
+        let sc = Scene::from_value(&v).unwrap();
+        match (outline_crosses(&v, 2000), compute(&sc, &Options::default())) {
+            (true, Err(e)) => assert_eq!(e.field(), Some("control_points"), "y = {y}: {e}"),
+            (false, Ok(d)) => {
+                let report = verify(&sc, &d, &grid64()).unwrap();
+                assert!(report.passed, "y = {y}: {}", report.summary_line());
+            }
+            (crosses, other) => panic!(
+                "y = {y}: crosses {crosses}, {:?}",
+                other.map(|d| d.edges.len())
+            ),
+        }
     }
 }

@@ -213,6 +213,21 @@ pub(crate) fn site_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)>
     }
 }
 
+/// [`site_spans`] without the spans that are points next to the site's size (a
+/// B-spline's repeated knots): the site's spans as the engines cut them.
+pub(crate) fn solid_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)> {
+    let (spans, closed) = site_spans(kind)?;
+    let scale = spans
+        .iter()
+        .map(|c| c.control_box().longest_side())
+        .fold(0.0, f64::max);
+    let spans = spans
+        .into_iter()
+        .filter(|c| c.control_box().longest_side() > 1e-12 * scale)
+        .collect();
+    Some((spans, closed))
+}
+
 /// Boehm knot insertion: `u` inserted once into `(knots, points)` of degree `p`, in
 /// the span `knots[k] ≤ u < knots[k+1]` (`knots[k] < u ≤ knots[k+1]` with `left`, for
 /// the end of the curve's range).
@@ -285,11 +300,11 @@ pub const JOIN: f64 = 1e-12;
 
 /// An end of an open site (`end` 0: its start, 1: its end) joined to an end of another.
 #[derive(Clone, Copy, Debug)]
-struct Link {
+pub(crate) struct Link {
     /// The other site.
-    site: usize,
+    pub site: usize,
     /// Its end there.
-    end: usize,
+    pub end: usize,
 }
 
 /// A site's spans: whether it is closed, its end points and unit end tangents.
@@ -309,8 +324,18 @@ fn links(sites: &[Option<SiteSpans>], tol: f64) -> Vec<[Option<Link>; 2]> {
         .filter_map(|(i, s)| s.as_ref().filter(|s| !s.closed).map(|s| (i, s)))
         .flat_map(|(i, s)| [(i, 0, s.at[0]), (i, 1, s.at[1])])
         .collect();
-    let mut out = vec![[None, None]; sites.len()];
-    for &(i, end, p) in &ends {
+    link_ends(&ends, sites.len(), tol)
+}
+
+/// The links among the `ends` `(site, end, point)` of open sites (of `count` sites in
+/// all): an end is joined where it meets exactly one end of another site within `tol`.
+pub(crate) fn link_ends(
+    ends: &[(usize, usize, Point)],
+    count: usize,
+    tol: f64,
+) -> Vec<[Option<Link>; 2]> {
+    let mut out = vec![[None, None]; count];
+    for &(i, end, p) in ends {
         let mut meets = ends
             .iter()
             .filter(|&&(j, e, q)| (j, e) != (i, end) && q.dist(p) <= tol);
@@ -442,15 +467,7 @@ pub fn pieces(scene: &Scene) -> Pieces {
         .sites()
         .iter()
         .map(|s| {
-            let (spans, closed) = site_spans(&s.kind)?;
-            let scale = spans
-                .iter()
-                .map(|c| c.control_box().longest_side())
-                .fold(0.0, f64::max);
-            let spans: Vec<RationalBezier> = spans
-                .into_iter()
-                .filter(|c| c.control_box().longest_side() > 1e-12 * scale)
-                .collect();
+            let (spans, closed) = solid_spans(&s.kind)?;
             // in complex and medial_axis modes a curve meets itself: cut the spans at
             // their curvature extrema, so that no span has a bisector with itself
             let spans: Vec<RationalBezier> = if mode == Mode::Voronoi {

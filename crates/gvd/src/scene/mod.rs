@@ -6,6 +6,7 @@
 //! (`parse.rs`) is a thin reader on top.
 
 mod check;
+mod curve_contacts;
 mod parse;
 mod polygon_overlap;
 mod scale;
@@ -378,6 +379,13 @@ impl Scene {
         samples: impl Fn(usize) -> Vec<Point>,
     ) -> Result<(), Error> {
         polygon_overlap::sites_inside_polygons(&self.sites, samples)
+    }
+
+    /// Refuses free-form curves that cross or touch other than end to end in the modes
+    /// where they bound regions (checked per run: the mode may change after the scene
+    /// is built).
+    pub(crate) fn refuse_crossing_curves(&self) -> Result<(), Error> {
+        curve_contacts::crossing_curves(&self.domain, self.mode, &self.sites)
     }
 
     /// Checks and builds a scene. Refusals name the field (`domain`, `epsilon`) or the

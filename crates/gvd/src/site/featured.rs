@@ -267,17 +267,7 @@ fn is_freeform(kind: &SiteKind) -> bool {
 /// mode, every other kind (the region is then the free-form curves').
 fn check_mixed(scene: &Scene, curve: usize) -> Result<(), Error> {
     let medial = scene.mode() == Mode::MedialAxis;
-    let refused = |k: &SiteKind| {
-        !is_freeform(k)
-            && (medial
-                || matches!(
-                    k,
-                    SiteKind::Segment { .. }
-                        | SiteKind::Polyline { .. }
-                        | SiteKind::Polygon { .. }
-                        | SiteKind::Arc { .. }
-                ))
-    };
+    let refused = |k: &SiteKind| !is_freeform(k) && (medial || super::is_linear_or_circular(k));
     match scene.sites().iter().position(|s| refused(&s.kind)) {
         None => Ok(()),
         Some(i) => Err(Error::Unsupported {

@@ -239,7 +239,7 @@ fn mixed_scenes_go_to_the_distance_field_engine_which_names_the_site() {
     let d = compute(&mixed("voronoi"), &o).unwrap();
     assert_eq!(d.stats["engine"], "subdivision");
     assert!(
-        d.stats.get("algorithm").is_none(),
+        !d.stats.contains_key("algorithm"),
         "not the soft-predicate path"
     );
     let report = gvd::verify(&mixed("voronoi"), &d, &gvd::VerifyOptions::default()).unwrap();

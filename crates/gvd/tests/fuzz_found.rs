@@ -560,3 +560,48 @@ fn a_moved_control_point_is_refused_exactly_where_the_outline_crosses() {
         }
     }
 }
+
+/// A coastline-like ring of 800 corners in a domain of ±1e307 (fuzzing: the Sri Lanka
+/// coastline's domain replaced): the tolerance of a near touch, 4e-12 of the domain's
+/// size, dwarfs the ring, and the incremental engine's segment grid listed every
+/// segment in each of its cells, testing every pair once per cell: minutes, deaf to the
+/// time limit. It is refused now, at once; the test fails rather than hangs.
+#[test]
+fn segments_far_smaller_than_the_domain_are_refused_without_a_hang() {
+    let ring: Vec<[f64; 2]> = (0..800)
+        .map(|k| {
+            let a = std::f64::consts::TAU * f64::from(k) / 800.0;
+            let r = 2.0 + 0.3 * (7.0 * a).sin();
+            [80.0 + r * a.cos(), 8.0 + r * a.sin()]
+        })
+        .collect();
+    let text = serde_json::json!({"domain": [-1e307, -1e307, 1e307, 1e307], "mode": "complex",
+        "sites": [{"kind": "polygon", "rings": [ring]}]})
+    .to_string();
+    let (send, receive) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let scene = Scene::from_json(&text);
+        let result = scene.map(|s| {
+            compute(
+                &s,
+                &Options {
+                    engine: Engine::Incremental,
+                    ..Default::default()
+                },
+            )
+            .map(|d| d.edges.len())
+        });
+        let _ = send.send(result);
+    });
+    match receive.recv_timeout(std::time::Duration::from_secs(120)) {
+        Ok(Ok(Err(e))) | Ok(Err(e)) => assert!(
+            matches!(
+                e,
+                Error::Conflict { .. } | Error::Scene { .. } | Error::Site { .. }
+            ),
+            "{e}"
+        ),
+        Ok(Ok(Ok(edges))) => panic!("computed {edges} edges at a tolerance wider than the ring"),
+        Err(_) => panic!("no answer within two minutes"),
+    }
+}

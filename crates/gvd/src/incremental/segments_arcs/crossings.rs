@@ -121,7 +121,10 @@ pub(super) fn segment_grid(
     let total: f64 = (0..segments.len())
         .map(|k| ends(k)[0].dist(ends(k)[1]))
         .sum();
-    let side = BucketGrid::segment_cell_side(&extent, segments.len(), total);
+    // cells no smaller than `near`, by which each segment's box grows: else a `near`
+    // far beyond the segments' extent (a domain of 1e307 about a coastline) lists every
+    // segment in every cell, and the pairs are tested once per cell
+    let side = BucketGrid::segment_cell_side(&extent, segments.len(), total).max(near);
     let grid = BucketGrid::of_segments(extent, side, 4096, segments.len(), ends, near);
     (grid, extent)
 }

@@ -301,16 +301,14 @@ fn refuse_shared_ends(scene: &Scene) -> Result<(), Error> {
             SiteKind::Segment { from, to } => vec![*from, *to],
             SiteKind::Polyline { points } => points.clone(),
             SiteKind::Polygon { rings } => rings.concat(),
-            SiteKind::Arc {
-                center,
-                radius,
-                start_angle,
-                end_angle,
-            } => crate::geom::arc::Arc::from_angles(*center, *radius, *start_angle, *end_angle)
-                .ends()
-                .to_vec(),
+            // curves and arcs: the end control points of their spans (an arc's are its
+            // own ends, bit for bit; evaluating at 1 may round off the last one)
             kind => freeform::curve_spans(kind)
-                .and_then(|spans| Some(vec![spans.first()?.eval(0.0), spans.last()?.eval(1.0)]))
+                .and_then(|spans| {
+                    let first = *spans.first()?.control_points().first()?;
+                    let last = *spans.last()?.control_points().last()?;
+                    Some(vec![first, last])
+                })
                 .unwrap_or_default(),
         }
     };

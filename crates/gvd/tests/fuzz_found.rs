@@ -605,3 +605,73 @@ fn segments_far_smaller_than_the_domain_are_refused_without_a_hang() {
         Err(_) => panic!("no answer within two minutes"),
     }
 }
+
+/// The total length of the edges of each pair of sites (`voronoi` mode).
+fn length_by_pair(d: &gvd::VoronoiComplex) -> std::collections::BTreeMap<[usize; 2], f64> {
+    let mut out = std::collections::BTreeMap::new();
+    for e in &d.edges {
+        let (a, b) = (e.sites[0].site(), e.sites[1].site());
+        let length: f64 = e.points.windows(2).map(|w| w[0].dist(w[1])).sum();
+        *out.entry([a.min(b), a.max(b)]).or_insert(0.0) += length;
+    }
+    out
+}
+
+#[test]
+fn a_nurbs_circle_bent_into_a_loop_keeps_all_its_edges() {
+    // Fuzzing set a control point of the first of three NURBS circles to -0: the circle
+    // became a loop with a cusp, crossing itself. The free-form engine took a closed
+    // curve's outside to be one side of each of its spans, which such a loop has not,
+    // and lost most of an edge (complete 0.64). Each coordinate of each control point
+    // set so: both engines pass verify and agree (vertices, their sites, the edges'
+    // lengths per pair of sites); moving an end opens the curve, which is refused.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/freeform/freeform-nurbs-circles3.json");
+    let text = std::fs::read_to_string(path).unwrap();
+    for point in 0..9 {
+        for axis in 0..2 {
+            let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+            v["sites"][0]["control_points"][point][axis] = serde_json::json!(-0.0);
+            let sc = match Scene::from_value(&v) {
+                Err(e) if point == 0 || point == 8 => {
+                    assert_eq!(e.field(), Some("closed"), "{e}");
+                    continue;
+                }
+                other => other.unwrap(),
+            };
+            let run = |engine| {
+                let options = Options {
+                    engine,
+                    ..Default::default()
+                };
+                let d = compute(&sc, &options).unwrap();
+                let report = verify(&sc, &d, &grid64()).unwrap();
+                assert!(
+                    report.passed,
+                    "{point} {axis} {engine:?}: {}",
+                    report.summary_line()
+                );
+                d
+            };
+            let (ff, sub) = (run(Engine::Freeform), run(Engine::Subdivision));
+            assert_eq!(ff.vertices.len(), sub.vertices.len(), "{point} {axis}");
+            for v in &ff.vertices {
+                let w = sub
+                    .vertices
+                    .iter()
+                    .find(|w| w.at.dist(v.at) < 4.0 * sc.epsilon());
+                let w = w.unwrap_or_else(|| panic!("{point} {axis}: no vertex near {:?}", v.at));
+                assert_eq!(v.sites, w.sites, "{point} {axis}");
+            }
+            let (a, b) = (length_by_pair(&ff), length_by_pair(&sub));
+            assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
+            for (pair, l) in &a {
+                assert!(
+                    (l - b[pair]).abs() < 0.01 * l,
+                    "{point} {axis} {pair:?}: {l} vs {}",
+                    b[pair]
+                );
+            }
+        }
+    }
+}

@@ -131,6 +131,18 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
             cluster_of[i] = to;
         }
     }
+    // where whole sites are the generators, a run no longer than the snap whose two
+    // ends are in one cluster is no edge: a sliver of a near tie between two spans of
+    // one site (leaving a cusp together, nearly equally near); it would make a vertex
+    // of two sites
+    let mut used = vec![false; runs.len()];
+    for (k, r) in runs.iter().enumerate() {
+        let sliver = cluster_of[2 * k] == cluster_of[2 * k + 1] && length(&r.points) <= snap;
+        if sliver && !pieces.featured {
+            used[k] = true;
+            clusters[cluster_of[2 * k]].retain(|&i| ends[i].1 != k);
+        }
+    }
     // a cluster's generators and whether it is a vertex
     let mut complex = VoronoiComplex::default();
     let mut vertex_of = vec![None; clusters.len()];
@@ -185,7 +197,6 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
         }
     }
     // chain runs through joints (clusters of exactly two run ends, not vertices)
-    let mut used = vec![false; runs.len()];
     let other_end = |c: usize, i: usize| clusters[c].iter().copied().find(|&j| j != i);
     for start in 0..runs.len() {
         if used[start] {
@@ -253,8 +264,7 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
         }
         // a run from a vertex back to it no longer than the snap (ε/4) is no edge:
         // degenerate meetings (a centre of curvature of two spans) leave thousands
-        let length: f64 = points.windows(2).map(|w| w[0].dist(w[1])).sum();
-        if points.len() < 2 || (from.is_some() && from == to && length <= snap) {
+        if points.len() < 2 || (from.is_some() && from == to && length(&points) <= snap) {
             continue;
         }
         let parametric = chain
@@ -274,6 +284,11 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
     }
     merge_close_vertices(&mut complex, snap);
     (complex, loose)
+}
+
+/// The length of a polyline.
+fn length(points: &[Point]) -> f64 {
+    points.windows(2).map(|w| w[0].dist(w[1])).sum()
 }
 
 /// Run `r` in parameter space, in the order of the edge's generators (sorted), its end
@@ -310,7 +325,7 @@ fn parametric_piece(pieces: &Pieces, r: &Run, reversed: bool) -> ParametricPiece
 /// dropping those edges; a vertex left without an edge (the end of a run from a vertex
 /// back to it) goes too.
 fn merge_close_vertices(complex: &mut VoronoiComplex, snap: f64) {
-    let short = |e: &Edge| e.points.windows(2).map(|w| w[0].dist(w[1])).sum::<f64>() <= snap;
+    let short = |e: &Edge| length(&e.points) <= snap;
     let mut sets = DisjointSets::new(complex.vertices.len());
     for e in &complex.edges {
         if let (Some(a), Some(b)) = (e.from, e.to) {

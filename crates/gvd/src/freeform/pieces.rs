@@ -521,7 +521,14 @@ pub fn pieces(scene: &Scene) -> Pieces {
     // loops bound regions in `complex` and `medial_axis` modes only: in `voronoi` mode
     // the diagram lies on both sides of joined open sites
     let no_links = vec![[None, None]; sites.len()];
-    let sides = sides(&sites, if out.featured { &links } else { &no_links }, mode);
+    let mut sides = sides(&sites, if out.featured { &links } else { &no_links }, mode);
+    // a closed curve that crosses or touches itself or another (a loop with a cusp, a
+    // curve through another) has no outside that is one side of each of its spans: the
+    // lower envelope alone trims the bisectors then (`voronoi` mode; the other modes
+    // refuse such curves)
+    if mode == Mode::Voronoi && sites.iter().flatten().any(|s| s.closed) && scene.curves_meet() {
+        sides.fill(Side::Both);
+    }
     // per site: the indices of its first and last spans in `out.spans`
     let mut end_spans: Vec<[usize; 2]> = vec![[0, 0]; sites.len()];
     for (site, s) in sites.iter().enumerate() {

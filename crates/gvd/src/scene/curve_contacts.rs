@@ -209,6 +209,49 @@ pub(crate) fn crossing_curves(domain: &Aabb, mode: Mode, sites: &[Site]) -> Resu
     if mode == Mode::Voronoi {
         return Ok(());
     }
+    match first_contact(domain, sites) {
+        None => Ok(()),
+        Some((Found::Contact(a, b, p), unit)) => {
+            let (earlier, later) = (a.min(b), a.max(b));
+            let (x, y) = (p.x / unit, p.y / unit);
+            let what = if a == b {
+                "the curve crosses or touches itself".to_string()
+            } else {
+                format!("it crosses or touches site {earlier}")
+            };
+            Err(Error::site(
+                later,
+                "control_points",
+                format!(
+                    "{what} near ({x:.4e}, {y:.4e}); in 'complex' and 'medial_axis' modes \
+                     curves bound regions and may meet only end to end (mode 'voronoi' \
+                     takes crossing curves)"
+                ),
+            ))
+        }
+        Some((Found::Budget(a, b), _)) => Err(Error::site(
+            a.max(b),
+            "control_points",
+            format!(
+                "it runs so close to site {} that {MAX_PAIRS} pairs of its pieces did not \
+                 show where they meet; in 'complex' and 'medial_axis' modes curves may meet \
+                 only end to end",
+                a.min(b)
+            ),
+        )),
+    }
+}
+
+/// True when some free-form curves cross or touch other than end to end, or may (the
+/// search's budget ran out): then closed curves do not bound regions whose outside is
+/// one side of each span.
+pub(crate) fn curves_meet(domain: &Aabb, sites: &[Site]) -> bool {
+    first_contact(domain, sites).is_some()
+}
+
+/// The first contact of the scene's free-form curves other than end to end, and the
+/// power of two the search scaled them by (`None`: they meet only end to end).
+fn first_contact(domain: &Aabb, sites: &[Site]) -> Option<(Found, f64)> {
     let curves: Vec<(usize, Vec<RationalBezier>, bool)> = sites
         .iter()
         .enumerate()
@@ -216,7 +259,7 @@ pub(crate) fn crossing_curves(domain: &Aabb, mode: Mode, sites: &[Site]) -> Resu
         .filter(|(_, spans, _)| !spans.is_empty())
         .collect();
     if curves.is_empty() {
-        return Ok(());
+        return None;
     }
     // the open ends joined as the engines join them (`pieces::links`)
     let ends: Vec<(usize, usize, Point)> = curves
@@ -299,37 +342,7 @@ pub(crate) fn crossing_curves(domain: &Aabb, mode: Mode, sites: &[Site]) -> Resu
         }
     }
     let gap = GAP * extent * unit;
-    match search(&parts, gap, next) {
-        None => Ok(()),
-        Some(Found::Contact(a, b, p)) => {
-            let (earlier, later) = (a.min(b), a.max(b));
-            let (x, y) = (p.x / unit, p.y / unit);
-            let what = if a == b {
-                "the curve crosses or touches itself".to_string()
-            } else {
-                format!("it crosses or touches site {earlier}")
-            };
-            Err(Error::site(
-                later,
-                "control_points",
-                format!(
-                    "{what} near ({x:.4e}, {y:.4e}); in 'complex' and 'medial_axis' modes \
-                     curves bound regions and may meet only end to end (mode 'voronoi' \
-                     takes crossing curves)"
-                ),
-            ))
-        }
-        Some(Found::Budget(a, b)) => Err(Error::site(
-            a.max(b),
-            "control_points",
-            format!(
-                "it runs so close to site {} that {MAX_PAIRS} pairs of its pieces did not \
-                 show where they meet; in 'complex' and 'medial_axis' modes curves may meet \
-                 only end to end",
-                a.min(b)
-            ),
-        )),
-    }
+    search(&parts, gap, next).map(|found| (found, unit))
 }
 
 /// Halves parts until every pair, and every part with itself, is certified; the first

@@ -388,6 +388,11 @@ impl Scene {
         curve_contacts::crossing_curves(&self.domain, self.mode, &self.sites)
     }
 
+    /// True when some free-form curves cross or touch other than end to end (or may).
+    pub(crate) fn curves_meet(&self) -> bool {
+        curve_contacts::curves_meet(&self.domain, &self.sites)
+    }
+
     /// Checks and builds a scene. Refusals name the field (`domain`, `epsilon`) or the
     /// site index and its field, as for JSON input.
     pub fn new(domain: Aabb, epsilon: f64, mode: Mode, sites: Vec<Site>) -> Result<Scene, Error> {

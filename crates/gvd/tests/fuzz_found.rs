@@ -605,3 +605,56 @@ fn segments_far_smaller_than_the_domain_are_refused_without_a_hang() {
         Err(_) => panic!("no answer within two minutes"),
     }
 }
+
+/// Every number of a scene's domain and sites, plus `offset` (as `fuzz_mutate.py`
+/// translates a scene).
+fn translated(name: &str, offset: f64) -> serde_json::Value {
+    fn shift(v: &mut serde_json::Value, offset: f64) {
+        match v {
+            serde_json::Value::Number(n) => *v = serde_json::json!(n.as_f64().unwrap() + offset),
+            serde_json::Value::Array(a) => a.iter_mut().for_each(|e| shift(e, offset)),
+            serde_json::Value::Object(o) => o.values_mut().for_each(|e| shift(e, offset)),
+            _ => {}
+        }
+    }
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(format!("{name}.json"));
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    shift(&mut v["domain"], offset);
+    shift(&mut v["sites"], offset);
+    v.as_object_mut().unwrap().remove("epsilon");
+    v
+}
+
+#[test]
+fn a_domain_a_few_dozen_ulps_wide_is_refused() {
+    // The T junction and the narrow spike translated by 1e15 (epsilon deleted): a domain
+    // 4 wide where f64 spaces numbers 0.125 apart. The engines floored epsilon to 227,
+    // coarser than the domain: the incremental engine wrote the unit diagram rounded to
+    // that grid (17 epsilons off; `gvd verify` failed it, with or without `--bisectors`),
+    // the subdivision an empty diagram with exit 0.
+    for name in [
+        "scenes/regressions/t-junction-gap-4e-9",
+        "scenes/regressions/spike-3-segments-narrow",
+    ] {
+        match Scene::from_json(&translated(name, 1e15).to_string()) {
+            Err(Error::Scene { field, message }) => {
+                assert_eq!(field, "domain", "{name}");
+                assert!(message.contains("not finer than the domain"), "{message}");
+            }
+            other => panic!("{name}: {:?}", other.map(|s| s.epsilon())),
+        }
+        // nearer the origin, where the floor is finer than the domain, it is computed
+        let near = translated(name, 1e12).to_string();
+        let sc = Scene::from_json(&near).unwrap();
+        let options = Options {
+            engine: Engine::Incremental,
+            ..Default::default()
+        };
+        let d = compute(&sc, &options).unwrap();
+        let report = verify(&sc, &d, &grid64()).unwrap();
+        assert!(report.passed, "{name}: {}", report.summary_line());
+    }
+}

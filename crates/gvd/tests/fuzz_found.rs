@@ -680,3 +680,35 @@ fn verify_scans_rings_of_its_grid_in_their_own_cells() {
         Err(_) => panic!("gvd verify took more than 5 s"),
     }
 }
+
+/// The Sri Lanka coastline in a domain of ±1e307 (fuzzing: its domain replaced) was
+/// refused as "segments overlap within site 0" (both engines): at unit scale the
+/// coastline's coordinate differences multiply to below f64's range, so exact
+/// orientation tests find every corner collinear, and every end lies within the near
+/// touch tolerance (4e-12 of the domain) of every edge anyway. The refusal now names
+/// the domain, whatever the engine; from 1e13 up (2e-13 of the domain) likewise.
+#[test]
+fn sites_within_the_near_touch_tolerance_of_one_another_are_refused_naming_the_domain() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/real/coastline-sri-lanka-complex.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for d in [1e13, 1e307] {
+        v["domain"] = serde_json::json!([-d, -d, d, d]);
+        v.as_object_mut().unwrap().remove("epsilon");
+        let sc = Scene::from_json(&v.to_string()).unwrap();
+        for engine in [Engine::Incremental, Engine::Subdivision] {
+            let options = Options {
+                engine,
+                ..Default::default()
+            };
+            match compute(&sc, &options) {
+                Err(Error::Scene { field, message }) => {
+                    assert_eq!(field, "domain", "{d:e} {engine:?}: {message}");
+                    assert!(message.contains("near touch"), "{message}");
+                }
+                other => panic!("{d:e} {engine:?}: {:?}", other.map(|c| c.edges.len())),
+            }
+        }
+    }
+}

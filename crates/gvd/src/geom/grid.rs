@@ -182,18 +182,26 @@ impl BucketGrid {
     }
 
     /// Calls `f` for each item of the cells at Chebyshev distance exactly `ring` from
-    /// cell `c` (ring 0 is `c` itself). After rings `0..=k` every item whose box lies
-    /// outside them is farther than `k · side` from any point of `c`.
+    /// cell `c` (ring 0 is `c` itself), row by row. After rings `0..=k` every item whose
+    /// box lies outside them is farther than `k · side` from any point of `c`. Visits
+    /// only the ring's cells (at most `8 · ring`), not the square inside it: a search
+    /// through many rings stays linear in their cells.
     pub fn for_each_in_ring(&self, c: (usize, usize), ring: usize, mut f: impl FnMut(u32)) {
         let (ci, cj) = c;
         let (i0, i1) = (ci.saturating_sub(ring), (ci + ring).min(self.nx - 1));
         let (j0, j1) = (cj.saturating_sub(ring), (cj + ring).min(self.ny - 1));
+        let mut visit = |i: usize, j: usize| self.bucket((i, j)).iter().for_each(|&k| f(k));
         for j in j0..=j1 {
-            let edge_row = j.abs_diff(cj) == ring;
-            for i in i0..=i1 {
-                if edge_row || i.abs_diff(ci) == ring {
-                    self.bucket((i, j)).iter().for_each(|&k| f(k));
-                }
+            if j.abs_diff(cj) == ring {
+                (i0..=i1).for_each(|i| visit(i, j));
+                continue;
+            }
+            // the ring's left and right cells of this row, where inside the grid
+            if ci >= ring {
+                visit(ci - ring, j);
+            }
+            if ring > 0 && ci + ring < self.nx {
+                visit(ci + ring, j);
             }
         }
     }

@@ -444,7 +444,9 @@ pub(crate) fn near_coincident_sites(
 const COARSEST: f64 = 64.0;
 
 /// Checks that epsilon is finer than the domain (a coarser one leaves nothing to
-/// resolve: an empty diagram) and that f64 can resolve the scene at it: the domain's coordinates, each
+/// resolve: an empty diagram), and so is the floor the engines put on it
+/// ([`Aabb::f64_resolution`]: a domain a few dozen ulps wide far from the origin is
+/// refused, naming `domain`), and that f64 can resolve the scene at it: the domain's coordinates, each
 /// site's coordinates, radii and semi-axes, arc angles (times the radius), and the
 /// weights of the quadratic metrics (a power weight `w` enters as `w²`, the others as
 /// they are, against the field's slope of about the domain's size). Names the site and
@@ -462,6 +464,19 @@ pub(crate) fn check_precision(domain: &Aabb, epsilon: f64, sites: &[Site]) -> Re
     let ulp = |x: f64| x.abs() * f64::EPSILON;
     let limit = COARSEST * epsilon;
     let extent = domain.to_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    // the engines floor a finer epsilon to this; a floor not finer than the domain is,
+    // like such an epsilon, a diagram that resolves nothing (an empty one, or edges
+    // rounded to a grid of a few dozen steps)
+    let floor = domain.f64_resolution();
+    if floor >= side {
+        return Err(Error::scene(
+            "domain",
+            format!(
+                "the domain is only {side:e} wide at coordinates up to {extent:e}, where f64 spaces numbers {:e} apart: the engines resolve a diagram there only to {floor:.3e}, not finer than the domain; translate the scene (domain and sites) nearer the origin, or enlarge the domain",
+                extent.next_up() - extent
+            ),
+        ));
+    }
     if ulp(extent) > limit {
         return Err(Error::scene(
             "epsilon",

@@ -23,8 +23,8 @@ mod phases;
 
 use super::bisector_form::{self, OffsetGen};
 use super::segments_arcs::{
-    find_arc_conflict, find_conflict, split_segments, ArcConflict, ArcSpec, Conflict, Gen,
-    SegmentDiagram, Split, NEAR_TOUCH,
+    check_sites_beside_tolerance, find_arc_conflict, find_conflict, split_segments, ArcConflict,
+    ArcSpec, Conflict, Gen, SegmentDiagram, Split, NEAR_TOUCH,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
 use crate::compute::IncrementalOptions;
@@ -813,6 +813,9 @@ pub fn scene_voronoi(
     let mut phases = Phases::default();
     let mut g = Generators::of(scene);
     let near = NEAR_TOUCH * scene.domain().longest_side();
+    if !g.segments.is_empty() || !g.arcs.is_empty() {
+        check_sites_beside_tolerance(g.points.iter().copied(), &scene.domain())?;
+    }
     // (no cuts in `medial_axis` mode: its loops are those of the input)
     let cuts = cut_or_refuse(&mut g, scene, options.strict, near)?;
     g.finish(scene);

@@ -28,6 +28,33 @@ pub(crate) enum Conflict {
 /// keeps a factor 4 from there.
 pub(crate) const NEAR_TOUCH: f64 = 4e-12;
 
+/// Refuses, naming `domain`, sites (the corners and ends `points`) that all lie within
+/// the near-touch tolerance of one another: in a domain some 10^12 times their size
+/// every end counts as nearly on every segment (and at unit scale their coordinates'
+/// products underflow, so exact predicates find overlaps), which the per-pair
+/// refusals would blame on the sites.
+pub(crate) fn check_sites_beside_tolerance(
+    points: impl IntoIterator<Item = Point>,
+    domain: &Aabb,
+) -> Result<(), crate::Error> {
+    let mut points = points.into_iter().peekable();
+    if points.peek().is_none() {
+        return Ok(());
+    }
+    let side = domain.longest_side();
+    let extent = bounds_of_points(points).longest_side();
+    if extent > NEAR_TOUCH * side {
+        return Ok(());
+    }
+    Err(crate::Error::scene(
+        "domain",
+        format!(
+            "the segments, polylines, polygons and arcs span only {:.1e} of the domain's size, within the tolerance of a near touch ({NEAR_TOUCH:e} of it): every end would count as touching every segment; give a domain nearer the sites' size",
+            extent / side
+        ),
+    ))
+}
+
 /// Whether `p` lies within `near` of the inside of segment `ab`, its foot strictly
 /// between `a` and `b`.
 pub(super) fn nearly_inside(p: Point, a: Point, b: Point, near: f64) -> bool {

@@ -27,7 +27,7 @@ mod pieces;
 mod split;
 
 pub(crate) use arc_conflicts::{find_arc_conflict, ArcConflict, ArcSpec};
-pub(crate) use crossings::{find_conflict, Conflict, NEAR_TOUCH};
+pub(crate) use crossings::{check_sites_beside_tolerance, find_conflict, Conflict, NEAR_TOUCH};
 pub(crate) use geometry::Gen;
 pub(crate) use split::{split_segments, Split};
 

@@ -219,7 +219,7 @@ impl Polygonal {
             }
         }
         finish_corner_zones(&mut b);
-        check_conflicts(&b.features)?;
+        check_conflicts(&b.features, &scene.domain())?;
         let d = scene.domain();
         let scale = d
             .width()
@@ -402,8 +402,10 @@ fn finish_corner_zones(b: &mut Builder) {
 /// Refuses edges that cross, overlap or touch away from a shared corner (the
 /// incremental engine's check, `incremental/segments_arcs/crossings.rs`, with its
 /// resolution): features are a boundary complex only for non-crossing sites.
-fn check_conflicts(features: &[Feature]) -> Result<(), Error> {
-    use crate::incremental::segments_arcs::{find_conflict, Conflict, NEAR_TOUCH};
+fn check_conflicts(features: &[Feature], domain: &Aabb) -> Result<(), Error> {
+    use crate::incremental::segments_arcs::{
+        check_sites_beside_tolerance, find_conflict, Conflict, NEAR_TOUCH,
+    };
     let mut index = vec![u32::MAX; features.len()];
     let mut points = Vec::new();
     for (f, feat) in features.iter().enumerate() {
@@ -424,6 +426,7 @@ fn check_conflicts(features: &[Feature]) -> Result<(), Error> {
             ]
         })
         .collect();
+    check_sites_beside_tolerance(points.iter().copied(), domain)?;
     let near =
         NEAR_TOUCH * crate::geom::grid::bounds_of_points(points.iter().copied()).longest_side();
     let Some(c) = find_conflict(&points, &segments, &[], near) else {

@@ -132,15 +132,30 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
         }
     }
     // where whole sites are the generators, a run no longer than the snap whose two
-    // ends are in one cluster is no edge: a sliver of a near tie between two spans of
-    // one site (leaving a cusp together, nearly equally near); it would make a vertex
-    // of two sites
+    // ends are in one cluster, between two runs of the same two sites, is no edge: a
+    // sliver of a near tie between two spans of one site (leaving a cusp together,
+    // nearly equally near), which would make a vertex of two sites there
     let mut used = vec![false; runs.len()];
-    for (k, r) in runs.iter().enumerate() {
-        let sliver = cluster_of[2 * k] == cluster_of[2 * k + 1] && length(&r.points) <= snap;
-        if sliver && !pieces.featured {
-            used[k] = true;
-            clusters[cluster_of[2 * k]].retain(|&i| ends[i].1 != k);
+    if !pieces.featured {
+        let sliver = |k: usize| {
+            cluster_of[2 * k] == cluster_of[2 * k + 1] && length(&runs[k].points) <= snap
+        };
+        for members in clusters.iter_mut() {
+            let through: Vec<usize> = members
+                .iter()
+                .copied()
+                .filter(|&i| !sliver(ends[i].1))
+                .collect();
+            let joint = match through[..] {
+                [a, b] => gens(&runs[ends[a].1]) == gens(&runs[ends[b].1]),
+                _ => false,
+            };
+            if joint && through.len() < members.len() {
+                for &i in members.iter() {
+                    used[ends[i].1] |= sliver(ends[i].1);
+                }
+                *members = through;
+            }
         }
     }
     // a cluster's generators and whether it is a vertex

@@ -825,3 +825,37 @@ fn a_nurbs_circle_bent_into_a_loop_keeps_all_its_edges() {
         }
     }
 }
+
+#[test]
+fn a_domain_far_larger_than_the_curves_leaves_the_free_form_diagram_alone() {
+    // Fuzzing put the deep concavity (a curve of size 2), scaled by 1e300, in a domain
+    // of ±1e307: the free-form engine compared distances and met run ends within
+    // tolerances relative to the domain (2e-2 and 2 at unit scale), so all its run ends
+    // fell into one vertex (15 edges, verify sound 0.08, edges 8.6e304 off). Now the
+    // tolerances follow the curves' size: the diagram is the one in the curve's own
+    // domain, at any domain size and scale.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/freeform/freeform-deep-concavity-medial_axis.json");
+    let text = std::fs::read_to_string(path).unwrap();
+    let own = Scene::from_json(&text).unwrap();
+    let reference = compute(&own, &Options::default()).unwrap();
+    for (half, scale) in [(1e7, 1.0), (1e307, 1e300)] {
+        let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        v["domain"] = serde_json::json!([-half, -half, half, half]);
+        v["epsilon"] = serde_json::json!(own.epsilon() * scale);
+        for p in v["sites"][0]["control_points"].as_array_mut().unwrap() {
+            for x in p.as_array_mut().unwrap() {
+                *x = serde_json::json!(x.as_f64().unwrap() * scale);
+            }
+        }
+        let sc = Scene::from_value(&v).unwrap();
+        let d = compute(&sc, &Options::default()).unwrap();
+        assert_eq!(d.edges.len(), reference.edges.len(), "±{half:e}");
+        assert_eq!(d.vertices.len(), reference.vertices.len(), "±{half:e}");
+        for (a, b) in d.vertices.iter().zip(&reference.vertices) {
+            let off = (a.at * (1.0 / scale)).dist(b.at);
+            assert!(off <= 1e-9, "±{half:e}: {:?} vs {:?}", a.at, b.at);
+            assert_eq!(a.sites, b.sites);
+        }
+    }
+}

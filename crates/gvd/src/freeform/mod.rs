@@ -94,13 +94,23 @@ pub fn compute_with(
     pieces::check_region(scene, &pieces)?;
     let features = Features::new(&pieces);
     let domain = scene.domain();
-    let scale = domain.longest_side();
+    // distances are compared, and run ends meet, relative to the smaller of the domain
+    // and the curves: a domain far larger than the curves (±1e7 about a curve of size
+    // 2) would merge every run end into one vertex otherwise
+    let extent = pieces
+        .spans
+        .iter()
+        .map(|s| s.bbox)
+        .reduce(|a, b| a.union(&b))
+        .map_or(0.0, |b| b.longest_side());
+    let size = domain.longest_side().min(extent);
     let trimmer = Trimmer {
         features: &features,
         domain,
+        size,
         chord: chord(scene),
-        step: scale / 64.0,
-        tol: 1e-9 * scale,
+        step: domain.longest_side() / 64.0,
+        tol: 1e-9 * size,
         constraints,
         samples: std::cell::Cell::new(0),
         max_samples: MAX_SAMPLES,
@@ -222,8 +232,8 @@ pub fn compute_with(
             ),
         });
     }
-    assemble::reach_corners(&pieces, &mut runs, 1e-7 * scale, trimmer.chord);
-    let (mut complex, loose) = assemble::assemble(&pieces, &runs, 1e-7 * scale, trimmer.chord);
+    assemble::reach_corners(&pieces, &mut runs, 1e-7 * size, trimmer.chord);
+    let (mut complex, loose) = assemble::assemble(&pieces, &runs, 1e-7 * size, trimmer.chord);
     if !pieces.featured {
         complex.cells = cells::build_cells(&complex, &domain, &|q: Point| {
             features.nearest(q).map_or(0, |(f, _)| pieces.site(f))

@@ -85,6 +85,9 @@ pub struct Trimmer<'a> {
     pub features: &'a Features<'a>,
     /// The domain.
     pub domain: Aabb,
+    /// The scene's size: the smaller of the domain's and the curves' (the unit of the
+    /// tolerances).
+    pub size: f64,
     /// Chord tolerance of the polylines.
     pub chord: f64,
     /// Longest step between samples (so that short runs are not stepped over).
@@ -231,7 +234,7 @@ impl Trimmer<'_> {
                     (Some(x), Some(y)) => x.dist(y),
                     _ => f64::INFINITY,
                 };
-                d > 1e-12 * self.domain.longest_side()
+                d > 1e-12 * self.size
             }
             (false, false) => {
                 // a valid stretch may hide between two invalid samples: look when the
@@ -247,7 +250,7 @@ impl Trimmer<'_> {
                         if matches!((a.status, b.status),
                             (Status::Cone(u), Status::Cone(v)) if u != v) =>
                     {
-                        x.dist(y) > 1e-12 * self.domain.longest_side() && wider(48)
+                        x.dist(y) > 1e-12 * self.size && wider(48)
                     }
                     (Some(x), Some(y))
                         if matches!((a.status, b.status),
@@ -255,7 +258,7 @@ impl Trimmer<'_> {
                                 if !self.features.pieces.featured
                                     && self.features.pieces.site(u) != self.features.pieces.site(v)) =>
                     {
-                        x.dist(y) > 1e-12 * self.domain.longest_side() && wider(12)
+                        x.dist(y) > 1e-12 * self.size && wider(12)
                     }
                     (Some(x), Some(y)) => {
                         let near = |p: Point| self.domain.outside_distance(p) < self.step;

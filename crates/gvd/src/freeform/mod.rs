@@ -94,16 +94,16 @@ pub fn compute_with(
     pieces::check_region(scene, &pieces)?;
     let features = Features::new(&pieces);
     let domain = scene.domain();
-    // distances are compared, and run ends meet, relative to the smaller of the domain
-    // and the curves: a domain far larger than the curves (±1e7 about a curve of size
-    // 2) would merge every run end into one vertex otherwise
+    // distances are compared, and run ends meet, relative to the domain, but no more
+    // than four times the curves' extent: a domain far larger than the curves (±1e7
+    // about a curve of size 2) would merge every run end into one vertex otherwise
     let extent = pieces
         .spans
         .iter()
         .map(|s| s.bbox)
         .reduce(|a, b| a.union(&b))
         .map_or(0.0, |b| b.longest_side());
-    let size = domain.longest_side().min(extent);
+    let size = domain.longest_side().min(4.0 * extent);
     let trimmer = Trimmer {
         features: &features,
         domain,

@@ -85,8 +85,8 @@ pub struct Trimmer<'a> {
     pub features: &'a Features<'a>,
     /// The domain.
     pub domain: Aabb,
-    /// The scene's size: the smaller of the domain's and the curves' (the unit of the
-    /// tolerances).
+    /// The scene's size, the unit of the tolerances: the domain's, but no more than
+    /// four times the curves' extent.
     pub size: f64,
     /// Chord tolerance of the polylines.
     pub chord: f64,

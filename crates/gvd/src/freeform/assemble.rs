@@ -198,9 +198,6 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
         // the end of a ridge (an edge between two parts of one generator) at a centre of
         // curvature: a vertex listing that generator twice
         let ridge_end = members.len() == 1 && !boundary[c] && !third && g.len() == 1;
-        if ridge_end {
-            g.push(g[0]);
-        }
         // two edges of different pairs meeting (an edge whose generators change where it
         // crosses a zone boundary, as at the normal of a span at the corner it ends at):
         // a vertex of degree two
@@ -210,6 +207,11 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
             gens(&runs[k0]) != gens(&runs[k1])
         };
         if ridge_end || change || g.len() >= 3 || (members.len() >= 3 && !boundary[c]) {
+            // (several runs of one generator's ridge meeting, as near a centre of
+            // curvature: that generator, twice)
+            if g.len() == 1 {
+                g.push(g[0]);
+            }
             let at = members
                 .iter()
                 .map(|&i| ends[i].0)

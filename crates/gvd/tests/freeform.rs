@@ -1217,3 +1217,24 @@ fn joints_in_voronoi_mode_make_no_vertices_of_two_sites() {
     let report = gvd::verify(&sc, &ff, &gvd::VerifyOptions::default()).unwrap();
     assert!(report.passed, "{}", report.summary_line());
 }
+
+/// `complex` mode of the glyph of 20 joined open cubics: the chain bounds no solid (only
+/// a closed curve is one, as a polygon is), so the diagram lies on both sides. It lay
+/// outside only, as if the glyph were filled (both checkers: completeness 0.59; found
+/// by fuzzing). Inside it is the medial axis: every vertex of the `medial_axis` diagram
+/// is one of the complex's, with the same generators; and `gvd verify` passes it.
+#[test]
+fn a_chain_of_open_curves_has_its_complex_on_both_sides() {
+    let medial = scene("freeform-glyph20-medial_axis.json");
+    let complex = medial.clone().with_mode(Mode::Complex);
+    let axis = run(&medial, Engine::Freeform);
+    let whole = run(&complex, Engine::Freeform);
+    assert!(whole.vertices.len() > axis.vertices.len());
+    for v in &axis.vertices {
+        let w = whole.vertices.iter().find(|w| w.at.dist(v.at) < 1e-9);
+        let w = w.unwrap_or_else(|| panic!("medial-axis vertex {:?} missing", v.at));
+        assert_eq!(v.sites, w.sites);
+    }
+    let report = gvd::verify(&complex, &whole, &gvd::VerifyOptions::default()).unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}

@@ -352,7 +352,8 @@ pub(crate) fn link_ends(
 /// joined open sites that close up are loops, and their even-odd inside is the region
 /// (a loop inside an odd number of others is a hole's boundary): in `medial_axis` mode
 /// the diagram lies on each loop's side towards the region, in the other modes on its
-/// side away from it, on the side of each site's own direction; `Both` for the rest.
+/// side away from it, on the side of each site's own direction; `Both` for the rest,
+/// and for the chains in `complex` mode (only a closed curve is a solid there).
 fn sides(sites: &[Option<SiteSpans>], links: &[[Option<Link>; 2]], mode: Mode) -> Vec<Side> {
     let ring_of = |s: &SiteSpans, reversed: bool| {
         let mut v: Vec<Point> = s
@@ -434,6 +435,12 @@ fn sides(sites: &[Option<SiteSpans>], links: &[[Option<Link>; 2]], mode: Mode) -
             Side::Right
         };
         for &(site, reversed) in members {
+            // in `complex` mode a chain of open sites bounds no solid: the diagram lies
+            // on both of its sides (a closed curve is a solid, as a polygon is)
+            let chain = !sites[site].as_ref().is_some_and(|s| s.closed);
+            if chain && mode == Mode::Complex {
+                continue;
+            }
             out[site] = match (side, reversed) {
                 (Side::Left, true) => Side::Right,
                 (Side::Right, true) => Side::Left,

@@ -713,15 +713,14 @@ fn sites_within_the_near_touch_tolerance_of_one_another_are_refused_naming_the_d
     }
 }
 
-/// Still fails (docs/FUZZING.md): the twelve cocircular points and their centre at
-/// 1e-150. The bisector of the centre and the point at (−1.5, 0) (and its mirror) lies
-/// exactly on a lattice line of the subdivision (x = −0.375 of the domain); along that
-/// box side the two distances tie up to rounding, the side's scan finds 17 alternating
-/// ports near the vertex, and the leaves on its two sides join them differently: loose
-/// edge ends and gaps of up to 9 epsilons (verify: structure). The same at unit scale
-/// (the scene times 2^497) and at 1e300; the unit scene passes by the luck of rounding.
+/// The twelve cocircular points and their centre at 1e-150 (docs/FUZZING.md). The
+/// bisector of the centre and the point at (−1.5, 0) (and its mirror) lies on a lattice
+/// line of the subdivision (x = −0.375 of the domain); along that box side the two f64
+/// distances tied up to rounding, the side's scan found 17 alternating ports near the
+/// vertex, and the leaves on its two sides joined them differently: loose edge ends and
+/// gaps of up to 9 epsilons (verify: structure). Near-tied points are now compared
+/// exactly. `points_exact.rs` checks a family of such scenes against Delaunay.
 #[test]
-#[ignore = "still fails: a bisector along a box side of the subdivision"]
 fn a_bisector_along_a_box_side_leaves_no_loose_ends() {
     let sc = scene("fuzz/cocircular-12-1e-150-subdivision");
     let options = Options {

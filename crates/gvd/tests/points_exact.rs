@@ -26,8 +26,12 @@ impl Rng {
 }
 
 fn scene(points: &[(Point, Metric)], eps: f64) -> Scene {
+    scene_in(Aabb::from_array([-2.0, -2.0, 2.0, 2.0]), points, eps)
+}
+
+fn scene_in(domain: Aabb, points: &[(Point, Metric)], eps: f64) -> Scene {
     Scene::new(
-        Aabb::from_array([-2.0, -2.0, 2.0, 2.0]),
+        domain,
         eps,
         Mode::Voronoi,
         points
@@ -174,15 +178,26 @@ fn output_sets(d: &gvd::VoronoiComplex) -> (Vec<ExactVertex>, BTreeSet<[usize; 2
 fn assert_matches(sc: &Scene, exact_v: &[ExactVertex], exact_pairs: &[([usize; 2], f64)]) {
     let d = gvd::compute(sc, &subdivision()).unwrap();
     d.check_invariants().unwrap();
+    assert_diagram_matches(&d, sc, exact_v, exact_pairs);
+}
+
+/// [`assert_matches`] on a diagram `d` of `sc` (or of `sc` scaled, brought back).
+fn assert_diagram_matches(
+    d: &gvd::VoronoiComplex,
+    sc: &Scene,
+    exact_v: &[ExactVertex],
+    exact_pairs: &[([usize; 2], f64)],
+) {
     let eps = sc.epsilon();
-    let (out_v, out_pairs) = output_sets(&d);
+    let domain = sc.domain();
+    let (out_v, out_pairs) = output_sets(d);
     for (p, s) in exact_v {
-        if sc.domain().outside_distance(*p) == 0.0
+        if domain.outside_distance(*p) == 0.0
             && [
-                p.x - sc.domain().min.x,
-                sc.domain().max.x - p.x,
-                p.y - sc.domain().min.y,
-                sc.domain().max.y - p.y,
+                p.x - domain.min.x,
+                domain.max.x - p.x,
+                p.y - domain.min.y,
+                domain.max.y - p.y,
             ]
             .iter()
             .all(|m| *m > eps)
@@ -256,6 +271,92 @@ fn cocircular_points_with_centre() {
         .collect();
     pts.push(Point::new(0.0, 0.0));
     check_euclidean(&pts, 1e-3);
+}
+
+/// Point sets whose bisectors lie on lines of the subdivision's lattice over
+/// `[-2, 2]²` (x or y = 0, ±0.25, ±0.5, ±0.75, ±1, ...) at several depths, and whose
+/// vertices lie on them or on its nodes: rings of 4, 8 and 12 points about a centre
+/// point, the axes' points, grids, pairs mirrored about a line, and a mix.
+fn lattice_tie_families() -> Vec<(String, Vec<Point>)> {
+    let mut out = Vec::new();
+    for n in [4, 8, 12] {
+        for r in [0.5, 1.0, 1.5] {
+            let mut pts: Vec<Point> = (0..n)
+                .map(|k| {
+                    let a = 2.0 * std::f64::consts::PI * k as f64 / n as f64;
+                    Point::new(r * a.cos(), r * a.sin())
+                })
+                .collect();
+            pts.push(Point::new(0.0, 0.0));
+            out.push((format!("ring of {n}, radius {r}, and its centre"), pts));
+        }
+    }
+    for a in [0.5, 0.75, 1.0, 1.5] {
+        let pts = [(a, 0.0), (-a, 0.0), (0.0, a), (0.0, -a), (0.0, 0.0)];
+        out.push((
+            format!("axes at {a}"),
+            pts.map(|(x, y)| Point::new(x, y)).to_vec(),
+        ));
+    }
+    for (h, o) in [(0.5, 0.25), (0.5, 0.0), (1.0, 0.5)] {
+        let k = (2.0 / h) as i32;
+        let pts = (-k..k)
+            .flat_map(|i| (-k..k).map(move |j| Point::new(o + h * i as f64, o + h * j as f64)))
+            .filter(|p| p.x > -2.0 && p.y > -2.0)
+            .collect();
+        out.push((format!("grid of step {h} from {o}"), pts));
+    }
+    for c in [0.0, 0.5, -0.75, 0.25, 1.0] {
+        let pairs = [(0.25, -1.2), (0.5, 0.1), (0.75, 1.3)];
+        let pts = pairs
+            .iter()
+            .flat_map(|&(r, y)| [Point::new(c - r, y), Point::new(c + r, y)])
+            .collect();
+        out.push((format!("pairs mirrored about x = {c}"), pts));
+    }
+    let mix = [
+        (0.0, 0.0),
+        (1.0, 0.0),
+        (0.5, 0.8),
+        (0.5, -0.7),
+        (-1.0, 0.3),
+        (-1.0, -0.3),
+    ];
+    out.push(("mix".into(), mix.map(|(x, y)| Point::new(x, y)).to_vec()));
+    out
+}
+
+#[test]
+fn bisectors_on_lattice_lines_match_delaunay_at_any_scale() {
+    let grid64 = gvd::verify::VerifyOptions {
+        grid: 64,
+        ..Default::default()
+    };
+    for (name, pts) in lattice_tie_families() {
+        let unit = scene(
+            &pts.iter()
+                .map(|p| (*p, Metric::Euclidean))
+                .collect::<Vec<_>>(),
+            1e-3,
+        );
+        let (v, p) = delaunay_reference(&pts, &unit.domain());
+        // exact scales keep every tie; 1e-150 and 1e300 round the points
+        for s in [1.0, 2f64.powi(-497), 2f64.powi(497), 1e-150, 1e300] {
+            let k = |q: &Point| Point::new(q.x * s, q.y * s);
+            let scaled: Vec<(Point, Metric)> =
+                pts.iter().map(|q| (k(q), Metric::Euclidean)).collect();
+            let domain = Aabb::new(k(&unit.domain().min), k(&unit.domain().max));
+            let sc = scene_in(domain, &scaled, 1e-3 * s);
+            let mut d = gvd::compute(&sc, &subdivision()).unwrap();
+            d.check_invariants().unwrap();
+            let report = gvd::verify::verify(&sc, &d, &grid64).unwrap();
+            assert!(report.passed, "{name} ×{s:e}: {}", report.summary_line());
+            if s.log2().fract() == 0.0 {
+                d.scale(1.0 / s);
+                assert_diagram_matches(&d, &unit, &v, &p);
+            }
+        }
+    }
 }
 
 #[test]

@@ -1,5 +1,6 @@
 //! Exact signs of the plane's two basic determinants, the only home of Shewchuk's
-//! adaptive predicates (crate `robust`) (Shewchuk97).
+//! adaptive predicates (crate `robust`) (Shewchuk97), and the exact comparison of two
+//! distances from a point, by the same expansion arithmetic.
 //!
 //! `orient2d` and `incircle` are exact as long as no intermediate product overflows or
 //! underflows: every coordinate (and every difference of coordinates) within
@@ -58,6 +59,64 @@ pub fn orientation(a: Point, b: Point, c: Point) -> Ordering {
         .unwrap_or(Ordering::Equal)
 }
 
+/// The sign of `|q − a|² − |q − b|²`, exact: `Less` when `q` is nearer `a`, `Equal` on
+/// their bisector. Each coordinate difference is split into its rounded value and its
+/// error (two-diff), each square into products with their fused-multiply-add errors, and
+/// the 24 terms are summed without rounding into a nonoverlapping expansion (Shewchuk's
+/// grow-expansion), whose largest component carries the sign (Shewchuk97, §2). Exact
+/// within [`ORIENT_EXACT_RANGE`] (the products and their errors stay normal).
+pub fn compare_distances(q: Point, a: Point, b: Point) -> Ordering {
+    let mut expansion: Vec<f64> = Vec::with_capacity(24);
+    for (site, sign) in [(a, 1.0), (b, -1.0)] {
+        for (u, v) in [(q.x, site.x), (q.y, site.y)] {
+            let (h, l) = two_diff(u, v);
+            // (h + l)² = h·h + 2h·l + l·l
+            for (x, y) in [(h, h), (2.0 * h, l), (l, l)] {
+                let p = x * y;
+                let e = x.mul_add(y, -p);
+                grow_expansion(&mut expansion, sign * p);
+                grow_expansion(&mut expansion, sign * e);
+            }
+        }
+    }
+    let top = expansion.iter().rev().find(|c| **c != 0.0).copied();
+    top.unwrap_or(0.0)
+        .partial_cmp(&0.0)
+        .unwrap_or(Ordering::Equal)
+}
+
+/// `a − b` as `x + y` exactly, `x` the rounded difference (Knuth's two-sum).
+fn two_diff(a: f64, b: f64) -> (f64, f64) {
+    two_sum(a, -b)
+}
+
+/// `a + b` as `x + y` exactly, `x` the rounded sum.
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let x = a + b;
+    let bv = x - a;
+    let av = x - bv;
+    (x, (a - av) + (b - bv))
+}
+
+/// Adds `t` to a nonoverlapping expansion sorted by increasing magnitude, keeping it so
+/// (zero components dropped).
+fn grow_expansion(expansion: &mut Vec<f64>, t: f64) {
+    let mut q = t;
+    let mut k = 0;
+    for i in 0..expansion.len() {
+        let (sum, err) = two_sum(q, expansion[i]);
+        q = sum;
+        if err != 0.0 {
+            expansion[k] = err;
+            k += 1;
+        }
+    }
+    expansion.truncate(k);
+    if q != 0.0 {
+        expansion.push(q);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -83,6 +142,26 @@ mod tests {
                 Ordering::Greater
             );
         }
+    }
+
+    #[test]
+    fn distances_compare_exactly_where_f64_ties() {
+        // q on the bisector x = 0.75 of (0, 0) and (1.5, 0), and one ulp off it
+        let (a, b) = (Point::new(0.0, 0.0), Point::new(1.5, 0.0));
+        for y in [0.0, -0.0822283471778805, 0.3, 1.7] {
+            let q = Point::new(0.75, y);
+            assert_eq!(compare_distances(q, a, b), Ordering::Equal, "{y}");
+            let left = Point::new(0.75 - f64::EPSILON / 2.0, y);
+            assert_eq!(compare_distances(left, a, b), Ordering::Less, "{y}");
+            let right = Point::new(0.75 + f64::EPSILON, y);
+            assert_eq!(compare_distances(right, a, b), Ordering::Greater, "{y}");
+        }
+        // a bisector tilted by 2e-16: along x = 0.75 − ulp it crosses once, at y ≈ 0.25
+        let tilted = Point::new(1.5, 3.0 * f64::EPSILON);
+        let x = 0.75 - f64::EPSILON / 2.0;
+        let near = |y: f64| compare_distances(Point::new(x, y), a, tilted);
+        assert_eq!(near(0.1), Ordering::Less);
+        assert_eq!(near(0.5), Ordering::Greater);
     }
 
     #[test]

@@ -68,6 +68,13 @@ impl DistanceField for EuclideanPoint {
         }
     }
 
+    /// `|q − a|` against `|q − b|` by the exact sign of `|q − a|² − |q − b|²`.
+    fn exact_cmp(&self, other: &EuclideanPoint, q: Point) -> Option<std::cmp::Ordering> {
+        Some(crate::geom::predicates::compare_distances(
+            q, self.at, other.at,
+        ))
+    }
+
     /// The bisector with another point in its linear form
     /// `h(q) = |q − a|² − |q − b|² = (b − a)·(2q − a − b)`, same sign as `|q − a| − |q − b|`.
     fn pair(&self, _: &(), other: &EuclideanPoint, _: &(), b: &Aabb) -> PairBound {

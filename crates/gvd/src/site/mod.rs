@@ -84,6 +84,13 @@ pub trait DistanceField: Send + Sync {
     /// The field's gradient at `q`.
     fn gradient(&self, q: Point) -> Point;
 
+    /// The exact order of this field's and `other`'s values at `q`, where the two can be
+    /// compared without rounding (two Euclidean points); `None` by default, when only
+    /// the f64 values can tell.
+    fn exact_cmp(&self, _other: &Self, _q: Point) -> Option<std::cmp::Ordering> {
+        None
+    }
+
     /// True when `other` is nowhere nearer than this site over `b` (ties allowed), known
     /// from what the two sites are rather than from bounds: say a curve `other` lies
     /// outside the region this curve bounds, and `b` is inside that region. The filter
@@ -519,6 +526,13 @@ macro_rules! delegate_to_families {
             /// free-form curve whose only possible nearest points over `b` are its ends at
             /// a point of `self` (a corner's point, or another curve's end: a joint), by
             /// `self` (`FreeformField::only_ends_at`).
+            fn exact_cmp(&self, other: &SiteField, q: Point) -> Option<std::cmp::Ordering> {
+                match (self, other) {
+                    (SiteField::Euclidean(p), SiteField::Euclidean(o)) => p.exact_cmp(o, q),
+                    _ => None,
+                }
+            }
+
             fn occludes(&self, _s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> bool {
                 match (self, other, so) {
                     (SiteField::Algebraic(p), SiteField::Algebraic(q), _) => p.occludes_over(q, b),

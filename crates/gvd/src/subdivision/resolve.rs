@@ -14,6 +14,10 @@ use crate::geom::{Aabb, Axis, Point};
 use crate::site::DistanceField;
 use smallvec::{smallvec, SmallVec};
 
+/// Ports this many ulps (of the split coordinate or the box) from a split are taken to
+/// be at its corner: a root of a bisector through the corner, rounded.
+const CORNER_ULPS: f64 = 8.0;
+
 /// Identifies a port globally: a transition on a shared segment, or one on a split line
 /// inside a leaf.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -340,18 +344,39 @@ impl<'a, F: DistanceField> Resolver<'a, F> {
         .collect();
         let (mut lower, mut upper): (Vec<Port>, Vec<Port>) = ports
             .into_iter()
-            .partition(|p| self.goes_lower(&b, p, axis, mid));
+            .partition(|p| self.goes_lower(&b, sites, p, axis, mid));
         lower.extend_from_slice(&inner);
         upper.extend(inner);
         self.resolve(lo, sites, None, lower, out);
         self.resolve(hi, sites, None, upper, out);
     }
 
-    /// Whether port `p` of box `b` belongs to the lower half when `b` is split at `mid`
-    /// along `axis`. A port exactly at the split (a corner of both halves) goes to the
-    /// half its bisector enters: the one its tangent, pointed into `b`, leans towards.
-    fn goes_lower(&self, b: &Aabb, p: &Port, axis: Axis, mid: f64) -> bool {
+    /// Whether port `p` of box `b` (with sites `sites`) belongs to the lower half when
+    /// `b` is split at `mid` along `axis`. A port at the split (a corner of both halves,
+    /// to within the rounding of its root: a bisector through the corner, tied there)
+    /// goes to the half whose side holds the label change: every side runs towards
+    /// greater coordinates with `pair[0]` before `pair[1]`, and the scan of the split
+    /// line sees the corner's label, so the change lies below the corner when that label
+    /// is `pair[1]` and above it when it is `pair[0]`; both halves' boundaries then agree
+    /// with the split line's ports. A port exactly at a corner labelled by a third site
+    /// goes to the half its bisector enters: the one its tangent, pointed into `b`,
+    /// leans towards.
+    fn goes_lower(&self, b: &Aabb, sites: &[u32], p: &Port, axis: Axis, mid: f64) -> bool {
         let at = p.at.coord(axis);
+        let rounding = CORNER_ULPS * f64::EPSILON * mid.abs().max(b.longest_side());
+        if (at - mid).abs() <= rounding {
+            let corner = match axis {
+                Axis::X => Point::new(mid, p.at.y),
+                Axis::Y => Point::new(p.at.x, mid),
+            };
+            let corner = label(self.fields, sites, corner);
+            if corner == p.pair[1] {
+                return true;
+            }
+            if corner == p.pair[0] {
+                return false;
+            }
+        }
         if at != mid {
             return at < mid;
         }

@@ -156,27 +156,62 @@ fn merge_line(
     }
 }
 
+/// Two values closer than this many ulps (of the larger) are ordered by the fields'
+/// exact comparison where they have one: a Euclidean distance is computed to about 2.5
+/// ulps, so farther apart the f64 order is the exact one.
+const ROUNDING_ULPS: f64 = 16.0;
+
 /// The nearest of `cands` at `q`; ties go to the smallest site index, so every caller
 /// labels a point alike whatever superset of the true nearest sites it passes.
 pub fn label<F: DistanceField>(fields: &[F], cands: &[u32], q: Point) -> u32 {
-    nearest_of(cands.iter().map(|&c| (c, fields[c as usize].value(q))))
+    nearest_of(
+        fields,
+        q,
+        cands.iter().map(|&c| (c, fields[c as usize].value(q))),
+    )
 }
 
 /// [`label`] among `sites` at a point `q` of the box their states were made for.
 fn label_in<F: DistanceField>(fields: &[F], sites: &[(u32, F::State)], q: Point) -> u32 {
     nearest_of(
+        fields,
+        q,
         sites
             .iter()
             .map(|(c, s)| (*c, fields[*c as usize].value_in(s, q))),
     )
 }
 
-/// The site of least value, the smallest index among equals.
-fn nearest_of(values: impl Iterator<Item = (u32, f64)>) -> u32 {
+/// Whether two field values are within [`ROUNDING_ULPS`] of each other.
+fn within_rounding(v: f64, w: f64) -> bool {
+    (v - w).abs() <= ROUNDING_ULPS * f64::EPSILON * v.abs().max(w.abs())
+}
+
+/// The site of least value at `q` among `(site, value)`, the smallest index among equals.
+///
+/// Values within rounding of each other are compared exactly where the fields can
+/// ([`DistanceField::exact_cmp`]): along a bisector of two points that lies on a box
+/// side, the f64 distances differ by rounding alone, and the side would change label
+/// at random points (ports that the leaves on either side join differently); exactly,
+/// the side is tied all along and takes the smaller index, as the filter, exact for
+/// such pairs, assumes.
+fn nearest_of<F: DistanceField>(
+    fields: &[F],
+    q: Point,
+    values: impl Iterator<Item = (u32, f64)>,
+) -> u32 {
+    let nearer = |(c, v): (u32, f64), (b, w): (u32, f64)| {
+        if within_rounding(v, w) {
+            if let Some(order) = fields[c as usize].exact_cmp(&fields[b as usize], q) {
+                return order.then(c.cmp(&b)).is_lt();
+            }
+        }
+        v < w || (v == w && c < b)
+    };
     let mut best = (u32::MAX, f64::INFINITY);
-    for (c, v) in values {
-        if best.0 == u32::MAX || v < best.1 || (v == best.1 && c < best.0) {
-            best = (c, v);
+    for cv in values {
+        if best.0 == u32::MAX || nearer(cv, best) {
+            best = cv;
         }
     }
     best.0
@@ -399,14 +434,27 @@ impl<F: DistanceField> Scan<'_, F> {
                 .unwrap_or((l, None))
         };
         if sites.len() == 2 {
-            // one bisector: its root, by regula falsi
+            // one bisector: its root, by regula falsi; but where the fields compare
+            // exactly and their values at an end are within rounding, the f64 difference
+            // may be noise along the piece, and the bisection below on the (exact)
+            // labels finds the change
             let (a, b) = (site(l0), site(l1));
-            let h = |t: f64| {
+            let values = |t: f64| {
                 let q = self.at(t);
-                value(a, q) - value(b, q)
+                (value(a, q), value(b, q))
             };
-            let (h0, h1) = (h(t0), h(t1));
-            if h0 <= 0.0 && h1 >= 0.0 && h0 != h1 {
+            let ((a0, b0), (a1, b1)) = (values(t0), values(t1));
+            let (h0, h1) = (a0 - b0, a1 - b1);
+            let exact = || {
+                let (fa, fb) = (&self.fields[a.0 as usize], &self.fields[b.0 as usize]);
+                fa.exact_cmp(fb, self.p0).is_some()
+            };
+            let noise = (within_rounding(a0, b0) || within_rounding(a1, b1)) && exact();
+            if !noise && h0 <= 0.0 && h1 >= 0.0 && h0 != h1 {
+                let h = |t: f64| {
+                    let (x, y) = values(t);
+                    x - y
+                };
                 let t = super::trace::illinois(h, t0, t1, h0, h1);
                 out.push(Transition {
                     at: self.at(t),
@@ -421,7 +469,7 @@ impl<F: DistanceField> Scan<'_, F> {
                 break;
             }
             let q = self.at(tm);
-            let lm = nearest_of(sites.iter().map(|&s| (s.0, value(s, q))));
+            let lm = nearest_of(self.fields, q, sites.iter().map(|&s| (s.0, value(s, q))));
             if lm == l0 {
                 t0 = tm;
             } else if lm == l1 {
@@ -471,6 +519,26 @@ mod tests {
         fn gradient(&self, q: Point) -> Point {
             self.0.gradient(q)
         }
+    }
+
+    #[test]
+    fn a_side_along_a_bisector_changes_label_where_exact_arithmetic_does() {
+        // the centre, the ring point at (−1.5, 0) (its y rounded from sin π), and the
+        // ring point below it: the first two's bisector is the side x = −0.75, tilted by
+        // 1e-16, which it crosses at y = b.y/2; the third takes over below their vertex
+        let a = EuclideanPoint::new(Point::new(0.0, 0.0));
+        let b = EuclideanPoint::new(Point::new(-1.5, 1.8369701987210296e-16));
+        let c = EuclideanPoint::new(Point::new(-1.2990381056766582, -0.7499999999999996));
+        let fields = [a, b, c];
+        let (p0, p1) = (Point::new(-0.75, -0.5), Point::new(-0.75, 0.5));
+        let found = transitions_of(&fields, &[0, 1, 2], p0, p1, 1e-3, &Watch::default());
+        let pairs: Vec<[u32; 2]> = found.iter().map(|t| t.pair).collect();
+        assert_eq!(pairs, [[2, 0], [0, 1]], "{found:?}");
+        let vertex_y = -0.20096189432334194;
+        assert!((found[0].at.y - vertex_y).abs() < 1e-12, "{found:?}");
+        // exactly: |q − a|² − |q − b|² = b.y (2y − b.y) changes sign at y = b.y / 2 (to
+        // the resolution of the side's parameter)
+        assert!((found[1].at.y - 0.5 * b.at.y).abs() <= 1e-15, "{found:?}");
     }
 
     #[test]

@@ -522,10 +522,8 @@ macro_rules! delegate_to_families {
                 }
             }
 
-            /// Algebraic curves by the sides they lie on (`algebraic::occlusion`); a
-            /// free-form curve whose only possible nearest points over `b` are its ends at
-            /// a point of `self` (a corner's point, or another curve's end: a joint), by
-            /// `self` (`FreeformField::only_ends_at`).
+            /// Two Euclidean points exactly (`EuclideanPoint::exact_cmp`); other pairs by
+            /// their f64 values only.
             fn exact_cmp(&self, other: &SiteField, q: Point) -> Option<std::cmp::Ordering> {
                 match (self, other) {
                     (SiteField::Euclidean(p), SiteField::Euclidean(o)) => p.exact_cmp(o, q),
@@ -533,6 +531,10 @@ macro_rules! delegate_to_families {
                 }
             }
 
+            /// Algebraic curves by the sides they lie on (`algebraic::occlusion`); a
+            /// free-form curve whose only possible nearest points over `b` are its ends at
+            /// a point of `self` (a corner's point, or another curve's end: a joint), by
+            /// `self` (`FreeformField::only_ends_at`).
             fn occludes(&self, _s: &FieldState, other: &SiteField, so: &FieldState, b: &Aabb) -> bool {
                 match (self, other, so) {
                     (SiteField::Algebraic(p), SiteField::Algebraic(q), _) => p.occludes_over(q, b),

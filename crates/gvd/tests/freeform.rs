@@ -1238,3 +1238,59 @@ fn a_chain_of_open_curves_has_its_complex_on_both_sides() {
     let report = gvd::verify(&complex, &whole, &gvd::VerifyOptions::default()).unwrap();
     assert!(report.passed, "{}", report.summary_line());
 }
+
+/// No vertex of degree two joins two edges of the same two generators: such a vertex
+/// would only cut one edge in two.
+fn no_vertex_inside_an_edge(d: &VoronoiComplex) {
+    for (v, vertex) in d.vertices.iter().enumerate() {
+        let pairs: Vec<_> = d
+            .edges
+            .iter()
+            .filter(|e| e.from == Some(v) || e.to == Some(v))
+            .map(|e| &e.sites)
+            .collect();
+        assert!(
+            !(pairs.len() == 2 && pairs[0] == pairs[1]),
+            "vertex {v} at {:?} only cuts an edge of {:?}",
+            vertex.at,
+            pairs[0]
+        );
+    }
+}
+
+#[test]
+fn a_ridge_ending_beside_a_span_a_hundred_times_longer_stays_whole() {
+    // the glyph with one control point of site 2 moved down (y 0.620384 → 0.30): a
+    // spike at a notch, whose curvature maximum on its far side (radius 0.009) splits
+    // a span 0.0006 long from one 0.38 long; the ridge that ends at its centre of
+    // curvature came out in three pieces with loose ends 2e-4 apart
+    let sc = scene("freeform-glyph20-spike-medial_axis.json");
+    let d = run(&sc, Engine::Freeform);
+    no_loose_ends(&sc, &d, &joints(&sc));
+    no_vertex_inside_an_edge(&d);
+    let report = gvd::verify(&sc, &d, &gvd::VerifyOptions::default()).unwrap();
+    assert!(report.passed, "{:?}", report.problems);
+    // the ridge's end is the centre of the tightest circle through dense samples of
+    // site 2 past the spike's inflection
+    let curve = dense(&sc.sites()[2].kind, 200_000);
+    let centre = (62_000..69_000)
+        .map(|k| {
+            (
+                circumcentre(curve[k - 100], curve[k], curve[k + 100]),
+                curve[k],
+            )
+        })
+        .min_by(|a, b| a.0.dist(a.1).total_cmp(&b.0.dist(b.1)))
+        .unwrap()
+        .0;
+    let end = d
+        .vertices
+        .iter()
+        .find(|v| v.at.dist(centre) < 0.5 * sc.epsilon());
+    let end = end.unwrap_or_else(|| panic!("no vertex at the ridge's end {centre:?}"));
+    assert_eq!(end.sites.len(), 2);
+    assert_eq!(end.sites[0], end.sites[1]);
+    // the glyph itself: the tip's normal and ridge meet without a vertex
+    let sc = scene("freeform-glyph20-medial_axis.json");
+    no_vertex_inside_an_edge(&run(&sc, Engine::Freeform));
+}

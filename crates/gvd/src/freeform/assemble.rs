@@ -131,42 +131,44 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
             cluster_of[i] = to;
         }
     }
-    // where whole sites are the generators, a stub between two runs of the same two
-    // sites is no edge: a run no longer than the snap whose other end is in the same
-    // cluster (a sliver of a near tie between two spans of one site leaving a cusp
-    // together) or meets nothing but such slivers (a piece of a bisector past a joint's
-    // centre of curvature, beside its normal); it would make a vertex of two sites
+    // a stub between two runs of the same two generators is no edge: a run of those
+    // two, no longer than the snap, whose other end is in the same cluster (a sliver
+    // of a near tie between two spans of one site leaving a cusp together, or where
+    // both feet pass span ends at once) or meets nothing but such slivers (a piece of
+    // a bisector past a joint's centre of curvature, beside its normal); it would make
+    // a vertex of two generators
     let mut used = vec![false; runs.len()];
-    if !pieces.featured {
-        let short = |k: usize| length(&runs[k].points) <= snap;
-        let sliver = |k: usize| cluster_of[2 * k] == cluster_of[2 * k + 1] && short(k);
-        // the cluster holds end `i` and slivers only
-        let lone = |clusters: &[Vec<usize>], i: usize| {
-            clusters[cluster_of[i]]
-                .iter()
-                .all(|&j| j == i || sliver(ends[j].1))
+    let short = |k: usize| length(&runs[k].points) <= snap;
+    let sliver = |k: usize| cluster_of[2 * k] == cluster_of[2 * k + 1] && short(k);
+    // the cluster holds end `i` and slivers only
+    let lone = |clusters: &[Vec<usize>], i: usize| {
+        clusters[cluster_of[i]]
+            .iter()
+            .all(|&j| j == i || sliver(ends[j].1))
+    };
+    let stub = |clusters: &[Vec<usize>], i: usize| {
+        let k = ends[i].1;
+        short(k) && (sliver(k) || lone(clusters, i ^ 1))
+    };
+    for c in 0..clusters.len() {
+        let (stubs, through): (Vec<usize>, Vec<usize>) =
+            clusters[c].iter().partition(|&&i| stub(&clusters, i));
+        let joint = match through[..] {
+            [a, b] => {
+                let g = gens(&runs[ends[a].1]);
+                g == gens(&runs[ends[b].1]) && stubs.iter().all(|&i| gens(&runs[ends[i].1]) == g)
+            }
+            _ => false,
         };
-        let stub = |clusters: &[Vec<usize>], i: usize| {
-            let k = ends[i].1;
-            short(k) && (sliver(k) || lone(clusters, i ^ 1))
-        };
-        for c in 0..clusters.len() {
-            let (stubs, through): (Vec<usize>, Vec<usize>) =
-                clusters[c].iter().partition(|&&i| stub(&clusters, i));
-            let joint = match through[..] {
-                [a, b] => gens(&runs[ends[a].1]) == gens(&runs[ends[b].1]),
-                _ => false,
-            };
-            if joint && !stubs.is_empty() {
-                clusters[c] = through;
-                for i in stubs {
-                    used[ends[i].1] = true;
-                    // the stub's other end, and the slivers left alone with it
-                    let other = cluster_of[i ^ 1];
-                    if other != c {
-                        for j in std::mem::take(&mut clusters[other]) {
-                            used[ends[j].1] = true;
-                        }
+        if joint && !stubs.is_empty() {
+            clusters[c] = through;
+            for i in stubs {
+                used[ends[i].1] = true;
+                // the stub's other end, and the slivers left alone with it
+                let other = cluster_of[i ^ 1];
+                if other != c {
+                    for j in std::mem::take(&mut clusters[other]) {
+                        used[ends[j].1] = true;
                     }
                 }
             }

@@ -476,11 +476,13 @@ pub fn pieces(scene: &Scene) -> Pieces {
         .map(|s| {
             let (spans, closed) = solid_spans(&s.kind)?;
             // in complex and medial_axis modes a curve meets itself: cut the spans at
-            // their curvature extrema, so that no span has a bisector with itself
+            // their curvature extrema, so that no span has a bisector with itself, and
+            // grade them where a short span meets a long one
             let spans: Vec<RationalBezier> = if mode == Mode::Voronoi {
                 spans
             } else {
-                spans.iter().flat_map(split_at_vertices).collect()
+                let cut = spans.iter().flat_map(split_at_vertices).collect();
+                graded(cut, closed)
             };
             let (first, last) = (spans.first()?, spans.last()?);
             Some(SiteSpans {
@@ -716,6 +718,44 @@ pub fn curvature_extrema(c: &RationalBezier) -> Vec<f64> {
         })
         .filter(|&t| t > 1e-6 && t < 1.0 - 1e-6)
         .collect()
+}
+
+/// Most ratio of the sizes of two spans that meet end to end (see [`graded`]).
+const NEIGHBOUR_RATIO: f64 = 8.0;
+
+/// `spans` (one curve's, in order; `closed` when the last meets the first) with every
+/// span halved until it is at most [`NEIGHBOUR_RATIO`] times the size of the spans it
+/// meets. A ridge that ends at the joint of two spans (a curvature extremum) is a zero
+/// of `F3` of fourth order at a corner of their square, and `F3`'s error bound is
+/// relative to its largest coefficient: beside a span a thousand times longer, the
+/// ridge's last stretch sinks below it, and the trace breaks it into pieces.
+fn graded(mut spans: Vec<RationalBezier>, closed: bool) -> Vec<RationalBezier> {
+    let size = |c: &RationalBezier| c.control_box().longest_side();
+    // each halving at least halves a span; a curve's spans are more than 1e-12 of its
+    // size (`solid_spans`), so this bounds the work on any input
+    let max_spans = spans.len() * 80;
+    let mut k = 0;
+    while spans.len() > 1 && k < spans.len() && spans.len() < max_spans {
+        let next = if k + 1 < spans.len() {
+            k + 1
+        } else if closed {
+            0
+        } else {
+            break;
+        };
+        let (a, b) = (size(&spans[k]), size(&spans[next]));
+        if a > NEIGHBOUR_RATIO * b || b > NEIGHBOUR_RATIO * a {
+            let long = if a > b { k } else { next };
+            let (l, r) = spans[long].split(0.5);
+            spans[long] = r;
+            spans.insert(long, l);
+            // the halves may now be too long beside their other neighbours
+            k = long.saturating_sub(1);
+        } else {
+            k += 1;
+        }
+    }
+    spans
 }
 
 /// `c` cut at its curvature extrema.

@@ -1294,3 +1294,14 @@ fn a_ridge_ending_beside_a_span_a_hundred_times_longer_stays_whole() {
     let sc = scene("freeform-glyph20-medial_axis.json");
     no_vertex_inside_an_edge(&run(&sc, Engine::Freeform));
 }
+
+#[test]
+fn a_normal_past_its_centre_of_curvature_beside_a_short_span_leaves_no_loose_end() {
+    // the same control point at y = 0.36: the notch's normal passes its centre of
+    // curvature where site 2's first span, 0.02 long, meets site 1's, 0.4 long; the
+    // branch of `F3` beside the normal ran along it 6e-4 past the vertex, a loose end
+    let sc = scene("freeform-glyph20-pinched-medial_axis.json");
+    let d = run(&sc, Engine::Freeform);
+    no_loose_ends(&sc, &d, &joints(&sc));
+    no_vertex_inside_an_edge(&d);
+}

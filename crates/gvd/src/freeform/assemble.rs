@@ -12,7 +12,8 @@ use super::pieces::{Feature, Pieces};
 use super::trim::{End, Run};
 use crate::complex::{Edge, Generator, ParametricPiece, SmallVec, Vertex, VoronoiComplex};
 use crate::disjoint_sets::DisjointSets;
-use crate::geom::Point;
+use crate::geom::grid::bounds_of_points;
+use crate::geom::{segment_distance, Aabb, Point};
 use std::collections::HashMap;
 
 /// Ends the runs of two spans that stop (within `snap`) short of a corner where
@@ -74,11 +75,8 @@ pub fn reach_corners(pieces: &Pieces, runs: &mut [Run], tol: f64, snap: f64) {
 /// `snap`); also returns the number of loose run ends (ends that meet nothing and are
 /// not on the boundary).
 pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiComplex, usize) {
-    let gens = |r: &Run| {
-        let mut g = [pieces.generator(r.pair[0]), pieces.generator(r.pair[1])];
-        g.sort();
-        g
-    };
+    let gens = |r: &Run| generators(pieces, r);
+    let runs = &without_doubles(pieces, runs, snap);
     // cluster the run ends on a grid of cells of size `tol`
     let mut ends: Vec<(Point, usize, usize)> = Vec::new(); // point, run, which end
     for (k, r) in runs.iter().enumerate() {
@@ -317,6 +315,52 @@ pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiC
     }
     merge_close_vertices(&mut complex, snap);
     (complex, loose)
+}
+
+/// The two generators of a run, sorted.
+fn generators(pieces: &Pieces, r: &Run) -> [Generator; 2] {
+    let mut g = [pieces.generator(r.pair[0]), pieces.generator(r.pair[1])];
+    g.sort();
+    g
+}
+
+/// `runs` without those that only trace again, within `snap`, a part of a longer run of
+/// the same two generators: where a joint's normal passes its centre of curvature, the
+/// distance to the curve is flat across the normal, and the branch of `F3` beside it
+/// runs along the normal for a stretch longer than `snap`, a loose end inside an edge.
+fn without_doubles(pieces: &Pieces, runs: &[Run], snap: f64) -> Vec<Run> {
+    let lengths: Vec<f64> = runs.iter().map(|r| length(&r.points)).collect();
+    let boxes: Vec<Aabb> = runs
+        .iter()
+        .map(|r| bounds_of_points(r.points.iter().copied()))
+        .collect();
+    // box `a` inside box `b` grown by `snap`
+    let inside = |a: &Aabb, b: &Aabb| {
+        a.min.x >= b.min.x - snap
+            && a.min.y >= b.min.y - snap
+            && a.max.x <= b.max.x + snap
+            && a.max.y <= b.max.y + snap
+    };
+    let traced_again = |k: usize| {
+        let g = generators(pieces, &runs[k]);
+        lengths[k] > snap
+            && (0..runs.len()).any(|j| {
+                j != k
+                    && lengths[j] > lengths[k]
+                    && inside(&boxes[k], &boxes[j])
+                    && generators(pieces, &runs[j]) == g
+                    && runs[k].points.iter().all(|&q| {
+                        runs[j]
+                            .points
+                            .windows(2)
+                            .any(|w| segment_distance(q, w[0], w[1]) <= snap)
+                    })
+            })
+    };
+    (0..runs.len())
+        .filter(|&k| !traced_again(k))
+        .map(|k| runs[k].clone())
+        .collect()
 }
 
 /// The length of a polyline.

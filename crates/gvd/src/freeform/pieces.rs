@@ -470,19 +470,17 @@ pub fn pieces(scene: &Scene) -> Pieces {
         featured: mode != Mode::Voronoi,
         ..Pieces::default()
     };
-    let sites: Vec<Option<SiteSpans>> = scene
+    let mut sites: Vec<Option<SiteSpans>> = scene
         .sites()
         .iter()
         .map(|s| {
             let (spans, closed) = solid_spans(&s.kind)?;
             // in complex and medial_axis modes a curve meets itself: cut the spans at
-            // their curvature extrema, so that no span has a bisector with itself, and
-            // grade them where a short span meets a long one
+            // their curvature extrema, so that no span has a bisector with itself
             let spans: Vec<RationalBezier> = if mode == Mode::Voronoi {
                 spans
             } else {
-                let cut = spans.iter().flat_map(split_at_vertices).collect();
-                graded(cut, closed)
+                spans.iter().flat_map(split_at_vertices).collect()
             };
             let (first, last) = (spans.first()?, spans.last()?);
             Some(SiteSpans {
@@ -494,6 +492,9 @@ pub fn pieces(scene: &Scene) -> Pieces {
         })
         .collect();
     let mut links = links(&sites, JOIN * scene.domain().longest_side());
+    if out.featured {
+        grade(&mut sites, &links);
+    }
     // a turn at a joint below `2 chord / diagonal` moves the edge along the mean normal
     // by less than `chord` anywhere in the domain: no corner there
     let diagonal = scene.domain().width().hypot(scene.domain().height());
@@ -725,37 +726,84 @@ const NEIGHBOUR_RATIO: f64 = 8.0;
 
 /// `spans` (one curve's, in order; `closed` when the last meets the first) with every
 /// span halved until it is at most [`NEIGHBOUR_RATIO`] times the size of the spans it
-/// meets. A ridge that ends at the joint of two spans (a curvature extremum) is a zero
-/// of `F3` of fourth order at a corner of their square, and `F3`'s error bound is
-/// relative to its largest coefficient: beside a span a thousand times longer, the
-/// ridge's last stretch sinks below it, and the trace breaks it into pieces.
-fn graded(mut spans: Vec<RationalBezier>, closed: bool) -> Vec<RationalBezier> {
-    let size = |c: &RationalBezier| c.control_box().longest_side();
-    // each halving at least halves a span; a curve's spans are more than 1e-12 of its
-    // size (`solid_spans`), so this bounds the work on any input
-    let max_spans = spans.len() * 80;
-    let mut k = 0;
-    while spans.len() > 1 && k < spans.len() && spans.len() < max_spans {
-        let next = if k + 1 < spans.len() {
-            k + 1
-        } else if closed {
-            0
+/// meets, and of the spans of other sites joined at its ends (`outside`: their sizes).
+/// Sizes below `floor` count as `floor`, which bounds the halvings.
+fn graded(
+    mut spans: Vec<RationalBezier>,
+    closed: bool,
+    outside: [Option<f64>; 2],
+    floor: f64,
+) -> Vec<RationalBezier> {
+    loop {
+        let sizes: Vec<f64> = spans.iter().map(|c| span_size(c).max(floor)).collect();
+        let n = sizes.len();
+        let too_long = (0..n).find(|&k| {
+            let before = match k {
+                0 if closed => Some(sizes[n - 1]),
+                0 => outside[0],
+                _ => Some(sizes[k - 1]),
+            };
+            let after = match k + 1 {
+                m if m < n => Some(sizes[m]),
+                _ if closed => Some(sizes[0]),
+                _ => outside[1],
+            };
+            [before, after]
+                .into_iter()
+                .flatten()
+                .any(|b| sizes[k] > NEIGHBOUR_RATIO * b.max(floor))
+        });
+        let Some(k) = too_long else { return spans };
+        let (l, r) = spans[k].split(0.5);
+        spans[k] = r;
+        spans.insert(k, l);
+    }
+}
+
+/// The size of a span: its control box's longest side.
+fn span_size(c: &RationalBezier) -> f64 {
+    c.control_box().longest_side()
+}
+
+/// Grades the spans of every site, and across the joints of sites joined end to end
+/// ([`graded`]), down to 1e-6 of the curves' extent. A ridge that ends at the joint of
+/// two spans (a curvature extremum, or a joint of two sites) is a zero of `F3` of
+/// fourth order at a corner of their square, and `F3`'s error bound is relative to its
+/// largest coefficient: beside a span a thousand times longer, the ridge's last stretch
+/// sinks below it, and the trace breaks it into pieces.
+fn grade(sites: &mut [Option<SiteSpans>], links: &[[Option<Link>; 2]]) {
+    let extent = sites
+        .iter()
+        .flatten()
+        .flat_map(|s| &s.spans)
+        .map(|c| c.control_box())
+        .reduce(|a, b| a.union(&b))
+        .map_or(0.0, |b| b.longest_side());
+    let floor = 1e-6 * extent;
+    let end_size = |sites: &[Option<SiteSpans>], link: Option<Link>| {
+        let l = link?;
+        let spans = &sites[l.site].as_ref()?.spans;
+        let span = if l.end == 0 {
+            spans.first()
         } else {
-            break;
+            spans.last()
         };
-        let (a, b) = (size(&spans[k]), size(&spans[next]));
-        if a > NEIGHBOUR_RATIO * b || b > NEIGHBOUR_RATIO * a {
-            let long = if a > b { k } else { next };
-            let (l, r) = spans[long].split(0.5);
-            spans[long] = r;
-            spans.insert(long, l);
-            // the halves may now be too long beside their other neighbours
-            k = long.saturating_sub(1);
-        } else {
-            k += 1;
+        span.map(span_size)
+    };
+    // a halving at a joint may make the span across it too long in turn: a few rounds
+    for _ in 0..16 {
+        let mut changed = false;
+        for i in 0..sites.len() {
+            let outside = links[i].map(|l| end_size(sites, l));
+            let Some(s) = sites[i].as_mut() else { continue };
+            let before = s.spans.len();
+            s.spans = graded(std::mem::take(&mut s.spans), s.closed, outside, floor);
+            changed |= s.spans.len() != before;
+        }
+        if !changed {
+            break;
         }
     }
-    spans
 }
 
 /// `c` cut at its curvature extrema.

@@ -864,3 +864,29 @@ fn a_domain_far_larger_than_the_curves_leaves_the_free_form_diagram_alone() {
         }
     }
 }
+
+#[test]
+fn a_nurbs_circle_with_a_heavy_weight_gets_its_whole_diagram_or_a_budget_error() {
+    // The first of three NURBS circles with the weight of a corner control point raised
+    // from 0.707 (fuzzing set it to 1e15): the arc becomes a shoulder of radius about
+    // 0.4/w², where all but 1/w of its parameter gathers. The free-form diagram lost the
+    // rest of the curve in F3's error bound and missed part of the edge of sites 0 and 2
+    // (verify: complete 0.97 at 1e3, 0.77 at 1e15). Beyond about 1e7 the shoulder is
+    // finer than f64 resolves, and the bisector samples run out: a budget error.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/freeform/freeform-nurbs-circles3.json");
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for weight in [1e3, 1e6, 1e15] {
+        json["sites"][0]["weights"][3] = weight.into();
+        let sc = Scene::from_json(&json.to_string()).unwrap();
+        match compute(&sc, &Options::default()) {
+            Ok(d) => {
+                let report = verify(&sc, &d, &Default::default()).unwrap();
+                assert!(report.passed, "{weight}: {}", report.summary_line());
+            }
+            Err(Error::Budget { .. }) => assert!(weight > 1e7, "{weight}"),
+            Err(e) => panic!("{weight}: {e}"),
+        }
+    }
+}

@@ -224,8 +224,28 @@ pub(crate) fn solid_spans(kind: &SiteKind) -> Option<(Vec<RationalBezier>, bool)
     let spans = spans
         .into_iter()
         .filter(|c| c.control_box().longest_side() > 1e-12 * scale)
+        .flat_map(|c| balanced(c, 0))
         .collect();
     Some((spans, closed))
+}
+
+/// Most ratio of a span's largest weight to its smallest (see [`balanced`]).
+const WEIGHT_RATIO: f64 = 16.0;
+
+/// `c` if its weights are within [`WEIGHT_RATIO`] of each other, else its halves in
+/// standard form ([`RationalBezier::standard_form`]), balanced in turn (`depth` halvings
+/// so far; each about takes the square root of the ratio, and 10 bring 1e300 to 2). A
+/// weight far above its neighbours gathers the parameter at one point of the curve (a
+/// conic of weight 1e3 spends all but 1e-3 of it at its shoulder), and `F3`, of degree
+/// 4 in the weights, loses the rest of the curve in its error bound.
+fn balanced(c: RationalBezier, depth: usize) -> Vec<RationalBezier> {
+    if c.weight_ratio() <= WEIGHT_RATIO || depth >= 10 {
+        return vec![c];
+    }
+    let (l, r) = c.standard_form().split(0.5);
+    let mut out = balanced(l.standard_form(), depth + 1);
+    out.extend(balanced(r.standard_form(), depth + 1));
+    out
 }
 
 /// Boehm knot insertion: `u` inserted once into `(knots, points)` of degree `p`, in

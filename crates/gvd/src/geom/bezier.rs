@@ -173,6 +173,34 @@ impl RationalBezier {
         )
     }
 
+    /// The same curve reparametrised so that its end weights are 1 (the standard form,
+    /// Farin02 §13.3): `wᵢ ↦ wᵢ cⁱ / w₀` with `cⁿ = w₀ / wₙ`, the Möbius map
+    /// `t ↦ c t / (1 − t + c t)` of the parameter.
+    pub fn standard_form(&self) -> RationalBezier {
+        let Some(&[.., w0]) = self.homogeneous.first() else {
+            return self.clone();
+        };
+        let n = self.homogeneous.len() - 1;
+        let wn = self.homogeneous[n][2];
+        let c = (w0 / wn).powf(1.0 / n.max(1) as f64);
+        let homogeneous = self
+            .homogeneous
+            .iter()
+            .zip(std::iter::successors(Some(1.0 / w0), |s| Some(s * c)))
+            .map(|(h, s)| h.map(|v| v * s))
+            .collect();
+        RationalBezier { homogeneous }
+    }
+
+    /// The largest weight over the smallest (1 for a polynomial curve).
+    pub fn weight_ratio(&self) -> f64 {
+        let weights = self.homogeneous.iter().map(|h| h[2]);
+        let (lo, hi) = weights.fold((f64::INFINITY, 0.0f64), |(lo, hi), w| {
+            (lo.min(w), hi.max(w))
+        });
+        hi / lo
+    }
+
     /// `n + 1` points at `t = 0, 1/n, …, 1`.
     pub fn sample(&self, n: usize) -> Vec<Point> {
         let n = n.max(1);
@@ -204,6 +232,21 @@ fn de_casteljau(points: &[[f64; 3]], t: f64, mut row: impl FnMut(&[[f64; 3]], us
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_standard_form_is_the_same_curve_under_its_moebius_map() {
+        let c = [(0.0, 0.0), (1.0, 2.0), (3.0, -1.0), (4.0, 1.0)].map(|(x, y)| Point::new(x, y));
+        let curve = RationalBezier::new(&c, Some(&[2.0, 50.0, 0.3, 0.5]));
+        let standard = curve.standard_form();
+        let weights: Vec<f64> = standard.homogeneous().iter().map(|h| h[2]).collect();
+        assert!((weights[0] - 1.0).abs() < 1e-15 && (weights[3] - 1.0).abs() < 1e-14);
+        let scale = (2.0f64 / 0.5).cbrt();
+        for k in 0..=10 {
+            let s = k as f64 / 10.0;
+            let t = scale * s / (1.0 - s + scale * s);
+            assert!(standard.eval(s).dist(curve.eval(t)) < 1e-13, "{s}");
+        }
+    }
 
     fn quarter_circle() -> RationalBezier {
         // x² + y² = 1 from (1, 0) to (0, 1): weights 1, √2/2, 1

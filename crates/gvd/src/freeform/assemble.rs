@@ -341,14 +341,16 @@ fn without_doubles(pieces: &Pieces, runs: &[Run], snap: f64) -> Vec<Run> {
             && a.max.x <= b.max.x + snap
             && a.max.y <= b.max.y + snap
     };
+    let mut by_pair: HashMap<[Generator; 2], Vec<usize>> = HashMap::new();
+    for (k, r) in runs.iter().enumerate() {
+        by_pair.entry(generators(pieces, r)).or_default().push(k);
+    }
     let traced_again = |k: usize| {
-        let g = generators(pieces, &runs[k]);
         lengths[k] > snap
-            && (0..runs.len()).any(|j| {
+            && by_pair[&generators(pieces, &runs[k])].iter().any(|&j| {
                 j != k
                     && lengths[j] > lengths[k]
                     && inside(&boxes[k], &boxes[j])
-                    && generators(pieces, &runs[j]) == g
                     && runs[k].points.iter().all(|&q| {
                         runs[j]
                             .points

@@ -144,17 +144,28 @@ pub fn clusters(boxes: Vec<Aabb>) -> Vec<Aabb> {
 /// The point of the closed segment `[a, b]` nearest to `q`: `a + t·(b − a)` with
 /// `t = (q − a)·(b − a) / |b − a|²` clamped to `[0, 1]`, and the end itself, exactly,
 /// where `t` is clamped (`a + 1·(b − a)` may miss `b` by an ulp: then two segments
-/// sharing that end measured from two points an ulp apart).
+/// sharing that end measured from two points an ulp apart). Past the middle, where `a`
+/// lies more than `2^20` times farther out than `b` and `q`, it is measured from `b`
+/// the same way: from the far end of a segment 1e15 long, the foot of a point beside
+/// the near end would round to an ulp of 1e15.
 pub fn segment_foot(q: Point, a: Point, b: Point) -> Point {
     let ab = b - a;
     let l2 = ab.dot(ab);
     let t = if l2 > 0.0 { (q - a).dot(ab) / l2 } else { 0.0 };
+    let size = |p: Point| p.x.abs().max(p.y.abs());
     if t <= 0.0 {
         a
     } else if t >= 1.0 {
         b
-    } else {
+    } else if t <= 0.5 || size(a) <= (1u64 << 20) as f64 * size(b).max(size(q)) {
         a.lerp(b, t)
+    } else {
+        let s = (q - b).dot(ab) / -l2;
+        if s <= 0.0 {
+            b
+        } else {
+            b.lerp(a, s)
+        }
     }
 }
 

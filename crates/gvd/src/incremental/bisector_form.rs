@@ -16,6 +16,7 @@
 //! bisector of constant clearance, which this form cannot trace: no form then.
 
 use crate::complex::BisectorPiece;
+use crate::geom::predicates::segment_anchor;
 use crate::geom::Point;
 
 /// A generator grown by the clearance `t`.
@@ -39,14 +40,17 @@ impl OffsetGen {
         OffsetGen::Circle { c, r, k }
     }
 
-    /// The line through `a` and `b`, grown towards `side`; `None` if `a = b`.
-    pub(crate) fn line(a: Point, b: Point, side: Point) -> Option<OffsetGen> {
+    /// The line through `a` and `b`, grown towards `side`; `None` if `a = b`. Its
+    /// offset `c` comes from `a`, or from the segment's point nearest to the origin
+    /// where `a` lies beyond `reach` (`segment_anchor`): `n·a` of an end far away
+    /// cancels to the rounding of that end.
+    pub(crate) fn line(a: Point, b: Point, side: Point, reach: f64) -> Option<OffsetGen> {
         let len = a.dist(b);
         if len <= 0.0 {
             return None;
         }
         let n = (b - a).perp() * (1.0 / len);
-        let c = -n.dot(a);
+        let c = -n.dot(segment_anchor(a, b, reach).0);
         let k = if n.dot(side) + c <= 0.0 { 1.0 } else { -1.0 };
         Some(OffsetGen::Line { n, c, k })
     }
@@ -238,8 +242,20 @@ mod tests {
         let p = OffsetGen::point(Point::new(0.3, -0.2));
         let q = OffsetGen::point(Point::new(1.1, 0.9));
         let side = Point::new(0.0, 2.0);
-        let line = OffsetGen::line(Point::new(-1.0, -1.0), Point::new(2.0, -0.5), side).unwrap();
-        let line2 = OffsetGen::line(Point::new(-1.0, 3.0), Point::new(1.0, 1.5), side).unwrap();
+        let line = OffsetGen::line(
+            Point::new(-1.0, -1.0),
+            Point::new(2.0, -0.5),
+            side,
+            f64::INFINITY,
+        )
+        .unwrap();
+        let line2 = OffsetGen::line(
+            Point::new(-1.0, 3.0),
+            Point::new(1.0, 1.5),
+            side,
+            f64::INFINITY,
+        )
+        .unwrap();
         let outside = OffsetGen::circle(Point::new(3.0, 2.0), 0.7, side);
         let inside = OffsetGen::circle(Point::new(0.5, 1.0), 3.0, side);
         let pairs = [
@@ -294,8 +310,20 @@ mod tests {
     #[test]
     fn constant_clearance_has_no_form() {
         let side = Point::new(0.0, 0.5);
-        let l1 = OffsetGen::line(Point::new(0.0, 0.0), Point::new(1.0, 0.0), side).unwrap();
-        let l2 = OffsetGen::line(Point::new(0.0, 1.0), Point::new(1.0, 1.0), side).unwrap();
+        let l1 = OffsetGen::line(
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            side,
+            f64::INFINITY,
+        )
+        .unwrap();
+        let l2 = OffsetGen::line(
+            Point::new(0.0, 1.0),
+            Point::new(1.0, 1.0),
+            side,
+            f64::INFINITY,
+        )
+        .unwrap();
         assert!(Form::of(l1, l2).is_none());
         let c = Point::new(0.0, 0.0);
         assert!(Form::of(OffsetGen::point(c), OffsetGen::circle(c, 1.0, side)).is_none());

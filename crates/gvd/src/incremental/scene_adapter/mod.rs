@@ -23,8 +23,8 @@ mod phases;
 
 use super::bisector_form::{self, OffsetGen};
 use super::segments_arcs::{
-    check_sites_beside_tolerance, find_arc_conflict, find_conflict, split_segments, ArcConflict,
-    ArcSpec, Conflict, Gen, SegmentDiagram, Split, NEAR_TOUCH,
+    check_sites_beside_tolerance, find_arc_conflict, find_conflict, joints, split_segments,
+    ArcConflict, ArcSpec, Conflict, Gen, SegmentDiagram, Split, NEAR_TOUCH,
 };
 use crate::complex::{BisectorPiece, FeatureKind, Generator, VoronoiComplex};
 use crate::compute::IncrementalOptions;
@@ -114,6 +114,8 @@ struct Generators {
     /// The site of `point_owner` and of `segment_owner`, compactly.
     point_site: Vec<u32>,
     segment_site: Vec<u32>,
+    /// Where segments' lines may be measured from their first end (`anchor_reach`).
+    reach: f64,
 }
 
 /// Room for every point of every site of `scene` (shared ones counted once each).
@@ -157,6 +159,7 @@ impl GeneratorBuilder {
             first_crossing_point: None,
             point_site: Vec::new(),
             segment_site: Vec::new(),
+            reach: f64::INFINITY,
         };
         let mut index = FxHashMap::default();
         index.reserve(most);
@@ -297,6 +300,7 @@ impl Generators {
     /// The compact site tables and, in `medial_axis` mode, the loops: once the
     /// generators are final (after any cuts).
     fn finish(&mut self, scene: &Scene) {
+        self.reach = super::anchor_reach(&scene.domain());
         self.point_site = self.point_owner.iter().map(|o| o.0 as u32).collect();
         self.segment_site = self.segment_owner.iter().map(|o| o.0 as u32).collect();
         if scene.mode() == Mode::MedialAxis {
@@ -465,7 +469,7 @@ impl Generators {
             Gen::Point(p) => self.points.get(p as usize).map(|&c| OffsetGen::point(c)),
             Gen::Segment(s) => {
                 let [a, b] = self.segments[s as usize].map(|p| self.points[p as usize]);
-                OffsetGen::line(a, b, side)
+                OffsetGen::line(a, b, side, self.reach)
             }
             Gen::Arc(a) => {
                 let arc = &self.arcs[a as usize];
@@ -756,6 +760,26 @@ fn arc_conflict_error(g: &Generators, c: ArcConflict) -> Error {
     }
 }
 
+/// The refusal of a cusp: `features` leave point generator `p` in one direction.
+fn cusp_error(g: &Generators, p: u32, features: [Gen; 2]) -> Error {
+    let [a, b] = features.map(|f| match f {
+        Gen::Segment(k) => g.segment_owner[k as usize].0,
+        Gen::Arc(k) => g.arc_owner[k as usize],
+        Gen::Point(k) => g.point_owner[k as usize].0,
+    });
+    let at = g.points[p as usize];
+    let message = format!(
+        "a cusp at ({:?}, {:?}): two edges leave it in the same direction (within 1e-7 \
+         rad), which the incremental engine does not resolve yet",
+        at.x, at.y
+    );
+    Error::Conflict {
+        site: a.min(b),
+        other: a.max(b),
+        message,
+    }
+}
+
 /// The refusal of conflict `c`, its message followed by `why` (why it was not cut).
 fn conflict_error(g: &Generators, c: Conflict, why: &str) -> Error {
     let seg_site = |s: usize| g.segment_owner[s].0;
@@ -831,6 +855,9 @@ pub fn scene_voronoi(
     let scale = scene.domain().longest_side();
     if let Some(c) = find_arc_conflict(&g.points, &g.segments, &g.arcs, &g.lonely, scale) {
         return Err(arc_conflict_error(&g, c));
+    }
+    if let Some((p, f1, f2)) = joints::find_cusp(&g.points, &g.segments, &g.arcs) {
+        return Err(cusp_error(&g, p, [f1, f2]));
     }
     phases.end("input");
     let budget = Budget::new(limits, scene.sites().len(), watch);

@@ -16,7 +16,9 @@
 //! are conics with a focus at its centre, in polar form (`arc.rs`).
 
 pub(crate) use super::arc::{Arc, Conic};
-use crate::geom::Point;
+use crate::geom::predicates::segment_anchor;
+use crate::geom::{Aabb, Point};
+use crate::incremental::ANCHOR_SPAN;
 
 /// A generator of the segment diagram.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
@@ -30,8 +32,13 @@ pub(crate) enum Gen {
     Arc(u32),
 }
 
-/// A segment as its supporting line: `a + u·d` for `0 < u < len`, unit normal `n`
-/// (`d` turned counter-clockwise).
+/// A segment from `a` to `b` as its supporting line: `o + u·d` for
+/// `feet[0] < u < feet[1]`, unit normal `n` (`d` turned counter-clockwise).
+///
+/// Feet and offsets are measured from `o`: the end `a`, unless it lies far out
+/// (`segment_anchor`); then the segment's point nearest to the origin (an end, or a
+/// point within an ulp of the segment): from an end 1e15 away, `x − a` would round
+/// every point of a domain 4 wide to 0.125, and the bisectors with the segment with it.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Line {
     pub(crate) a: Point,
@@ -40,21 +47,48 @@ pub(crate) struct Line {
     pub(crate) d: Point,
     pub(crate) n: Point,
     pub(crate) len: f64,
+    /// The origin of the feet and offsets, on the segment.
+    pub(crate) o: Point,
+    /// The feet of `a` and `b`.
+    pub(crate) feet: [f64; 2],
+    /// The length, or the domain's largest coordinate where that is smaller: the scale
+    /// of [`is_beside`](Self::is_beside)'s tolerance.
+    size: f64,
     /// The endpoints' point generators.
     pub(crate) ends: [u32; 2],
 }
 
 impl Line {
+    /// The segment, measured from `a`.
+    #[cfg(test)]
     pub(crate) fn new(a: Point, b: Point, ends: [u32; 2]) -> Line {
+        Line::anchored(a, b, ends, f64::INFINITY)
+    }
+
+    /// The segment, measured from `a` if it lies within `reach` of the origin.
+    pub(crate) fn anchored(a: Point, b: Point, ends: [u32; 2], reach: f64) -> Line {
         let v = b - a;
         let len = v.norm();
         let d = v * (1.0 / len);
+        let (o, lambda) = segment_anchor(a, b, reach);
+        // An end's own foot is 0; the other's, `±len`. From a point inside, each is
+        // measured from it: `len − λ·len` would round to an ulp of a far end's.
+        let feet = if lambda == 0.0 {
+            [0.0, len]
+        } else if lambda == 1.0 {
+            [-len, 0.0]
+        } else {
+            [(a - o).dot(d), (b - o).dot(d)]
+        };
         Line {
             a,
             b,
             d,
             n: d.perp(),
             len,
+            o,
+            feet,
+            size: len.min(reach / ANCHOR_SPAN),
             ends,
         }
     }
@@ -62,8 +96,30 @@ impl Line {
     /// The foot parameter and signed offset of `x`.
     #[inline]
     pub(crate) fn coords(&self, x: Point) -> (f64, f64) {
-        let r = x - self.a;
+        let r = x - self.o;
         (r.dot(self.d), r.dot(self.n))
+    }
+
+    /// `|x − p|² − h²` for `x` of foot `u` and offset `h`: `(u − u_p)² + h_p·(h_p − 2h)`
+    /// with `p`'s own (an end's exactly: `h_p = 0`). Far from the segment, where the
+    /// squares of `|x − p|` and `h` agree to their rounding, this keeps the difference.
+    pub(crate) fn excess(&self, (u, h): (f64, f64), p: Point) -> f64 {
+        let (up, hp) = if p == self.a {
+            (self.feet[0], 0.0)
+        } else if p == self.b {
+            (self.feet[1], 0.0)
+        } else {
+            self.coords(p)
+        };
+        (u - up) * (u - up) + hp * (hp - 2.0 * h)
+    }
+
+    /// Whether a point of foot `u` and offset `h` ([`coords`](Self::coords)) lies off
+    /// the line by more than rounding (`1e-12` of the scale): not `1e-12` of the length
+    /// of a segment 1e15 long, which took a point 1.16 from it for one on its line.
+    #[inline]
+    pub(crate) fn is_beside(&self, u: f64, h: f64) -> bool {
+        h.abs() > 1e-12 * (self.size + u.abs())
     }
 
     /// Distance to the open segment: `|offset|` when the foot is strictly inside,
@@ -71,7 +127,7 @@ impl Line {
     #[inline]
     pub(crate) fn open_distance(&self, x: Point) -> f64 {
         let (u, h) = self.coords(x);
-        if u > 0.0 && u < self.len {
+        if u > self.feet[0] && u < self.feet[1] {
             h.abs()
         } else {
             f64::INFINITY
@@ -83,11 +139,11 @@ impl Line {
     #[inline]
     pub(crate) fn claims(&self, x: Point, t: f64) -> bool {
         let (u, h) = self.coords(x);
-        u > 0.0 && u < self.len && h.abs() < t
+        u > self.feet[0] && u < self.feet[1] && h.abs() < t
     }
 
     pub(crate) fn at(&self, u: f64, h: f64) -> Point {
-        self.a + self.d * u + self.n * h
+        self.o + self.d * u + self.n * h
     }
 
     /// The common end of `self` and `other` (a point generator ending both), with the
@@ -123,8 +179,14 @@ pub(crate) enum Bisector {
         dir: Point,
         clearance: Clearance,
     },
-    /// The parabola of focus `p` and directrix `line`, parametrized by the foot `u`.
-    Parabola { line: Line, up: f64, hp: f64 },
+    /// The parabola of focus `p` (at foot `up`, offset `hp` of `line`) and directrix
+    /// `line`, parametrized by the foot `u`.
+    Parabola {
+        line: Line,
+        p: Point,
+        up: f64,
+        hp: f64,
+    },
     /// A point on the line of a segment (outside it) and that segment: the bisector
     /// has no piece where the segment is the nearer; kept straight between vertices.
     /// Likewise a point on an arc's circle (outside the arc) and that arc.
@@ -173,7 +235,7 @@ pub(crate) fn ray_exit(id: u32, p: Point, dir: Point, other: Shape) -> Option<f6
         }
         Shape::Segment(l) => {
             let (up, hp) = l.coords(p);
-            if l.ends.contains(&id) || hp.abs() <= 1e-12 * (l.len + up.abs()) {
+            if l.ends.contains(&id) || !l.is_beside(up, hp) {
                 return None;
             }
             hp.abs() / (1.0 - l.n.dot(dir) * hp.signum())
@@ -242,7 +304,7 @@ impl Bisector {
                 super::arc::point_arc(id, p, arc)
             }
             (Shape::Segment(l), Shape::Arc(arc)) | (Shape::Arc(arc), Shape::Segment(l)) => {
-                super::arc::line_arc(l.a, l.n, arc, probes)
+                super::arc::line_arc(l.o, l.n, arc, probes)
             }
             (Shape::Arc(a1), Shape::Arc(a2)) => super::arc::arc_arc(a1, a2, probes),
             (Shape::Point(_, p), Shape::Point(_, q)) => Bisector::Line {
@@ -260,8 +322,13 @@ impl Bisector {
                     };
                 }
                 let (up, hp) = l.coords(p);
-                if hp.abs() > 1e-12 * (l.len + up.abs()) {
-                    Bisector::Parabola { line: *l, up, hp }
+                if l.is_beside(up, hp) {
+                    Bisector::Parabola {
+                        line: *l,
+                        p,
+                        up,
+                        hp,
+                    }
                 } else {
                     Bisector::Chord {
                         clearance: Clearance::Point(p),
@@ -297,7 +364,7 @@ impl Bisector {
                         continue;
                     }
                     let normal = normal * (1.0 / len);
-                    let c = (l1.n.dot(l1.a) - sign * l2.n.dot(l2.a)) / len;
+                    let c = (l1.n.dot(l1.o) - sign * l2.n.dot(l2.o)) / len;
                     let miss = (normal.dot(near) - c).abs();
                     if best.as_ref().is_none_or(|(m, _)| miss < *m) {
                         let line = Bisector::Line {
@@ -338,7 +405,7 @@ impl Bisector {
                 let x = *origin + *dir * s;
                 (x, clearance.at(x))
             }
-            Bisector::Parabola { line, up, hp } => {
+            Bisector::Parabola { line, up, hp, .. } => {
                 let t = ((s - up) * (s - up) + hp * hp) / (2.0 * hp.abs());
                 (line.at(s, t.copysign(*hp)), t)
             }
@@ -435,33 +502,65 @@ impl Bisector {
     }
 
     /// Appends to `out` a polyline from `from` to `to` within `tol` of the bisector;
-    /// `false` (with the chord appended) when that takes more than `max` interior points.
+    /// where that takes more than `max` interior points, within `tol` wherever it can
+    /// meet the box `visible` (the domain; a curved part beyond it is then one chord,
+    /// which stays outside it); `false` (with the chord appended) when even that takes
+    /// more.
     pub(crate) fn polyline(
         &self,
         from: Point,
         to: Point,
         tol: f64,
+        visible: &Aabb,
         max: usize,
         out: &mut Vec<Point>,
     ) -> bool {
         out.push(from);
         match self {
             Bisector::Line { .. } | Bisector::Chord { .. } => {}
-            Bisector::Parabola { up, hp, .. } => {
+            Bisector::Parabola { line, up, hp, .. } => {
                 let (u0, u1) = self.range(from, to);
                 // Chord sagitta over a step Δu is at most Δu²·κ/8 with curvature
                 // κ ≤ 1/|h_p|. The apex (u = u_p) is always a vertex of the polyline:
                 // a chord across it could touch the focus on a parabola narrower
                 // than `tol`.
                 let step = (8.0 * tol * hp.abs()).sqrt();
-                let apex = (up - u0) * (up - u1) < 0.0;
-                let stops: &[f64] = if apex { &[u0, *up, u1] } else { &[u0, u1] };
-                let pieces = stops
-                    .windows(2)
-                    .map(|w| ((w[1] - w[0]).abs() / step).ceil());
-                if pieces.sum::<f64>() > max as f64 {
-                    out.push(to);
-                    return false;
+                let pieces = |v0: f64, v1: f64| {
+                    let apex = (up - v0) * (up - v1) < 0.0;
+                    let stops = if apex {
+                        vec![v0, *up, v1]
+                    } else {
+                        vec![v0, v1]
+                    };
+                    let n: f64 = stops
+                        .windows(2)
+                        .map(|w| ((w[1] - w[0]).abs() / step).ceil())
+                        .sum();
+                    (stops, n)
+                };
+                let (mut stops, mut n) = pieces(u0, u1);
+                let mut v0 = u0;
+                if n > max as f64 {
+                    // Too long to draw whole (an edge to a vertex 1e15 away): only feet
+                    // within those of the box's corners can belong to points of the
+                    // box, and along a chord the foot is linear, so beyond them one
+                    // chord leads to each end, with no point in the box.
+                    let feet = visible.corners().map(|c| line.coords(c).0);
+                    let lo = feet.iter().copied().fold(f64::INFINITY, f64::min);
+                    let hi = feet.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    if u0.max(u1) < lo || u0.min(u1) > hi {
+                        out.push(to);
+                        return true;
+                    }
+                    v0 = u0.clamp(lo, hi);
+                    (stops, n) = pieces(v0, u1.clamp(lo, hi));
+                    if n > max as f64 {
+                        out.push(to);
+                        return false;
+                    }
+                }
+                if v0 != u0 {
+                    out.push(self.point(from, to, v0).0);
                 }
                 for w in stops.windows(2) {
                     let n = ((w[1] - w[0]).abs() / step).ceil().max(1.0) as usize;

@@ -19,6 +19,7 @@
 use super::{ArcSpec, Gen, RawEdge, RawVertex};
 use crate::geom::Point;
 use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
 
 /// How far from opposite two features' directions away from a shared end may be
 /// (the sine of the angle between their normals) for a tangent joint: within
@@ -41,6 +42,30 @@ impl Joint {
     }
 }
 
+/// Per point generator, the features ending there with their unit directions away
+/// from it (beyond the end, along the tangent).
+fn ends_at(
+    points: &[Point],
+    segments: &[[u32; 2]],
+    arcs: &[ArcSpec],
+) -> Vec<SmallVec<[(Gen, Point); 2]>> {
+    let mut at: Vec<SmallVec<[(Gen, Point); 2]>> = vec![SmallVec::new(); points.len()];
+    for (k, &[a, b]) in segments.iter().enumerate() {
+        let d = points[b as usize] - points[a as usize];
+        let d = d * (1.0 / d.norm());
+        at[a as usize].push((Gen::Segment(k as u32), d * -1.0));
+        at[b as usize].push((Gen::Segment(k as u32), d));
+    }
+    for (k, arc) in arcs.iter().enumerate() {
+        // The counter-clockwise tangent, backwards at the start, forwards at the end.
+        for (end, angle, sign) in [(0, arc.start, -1.0), (1, arc.start + arc.span, 1.0)] {
+            let tangent = Point::new(-angle.sin(), angle.cos()) * sign;
+            at[arc.ends[end] as usize].push((Gen::Arc(k as u32), tangent));
+        }
+    }
+    at
+}
+
 /// The tangent joints: each point generator that ends exactly two features whose
 /// unit directions away from it `a₁`, `a₂` satisfy `|a₁ + a₂| ≤ TANGENT_TOL`, with
 /// those two features.
@@ -49,34 +74,10 @@ pub(crate) fn tangent_joints(
     segments: &[[u32; 2]],
     arcs: &[ArcSpec],
 ) -> FxHashMap<u32, Joint> {
-    // Per point: how many features end there, and the first two with their unit
-    // directions away from it.
-    let none = (Gen::Point(0), Point::default());
-    let mut at: Vec<(u32, [(Gen, Point); 2])> = vec![(0, [none; 2]); points.len()];
-    let mut add = |p: u32, f: Gen, dir: Point| {
-        let (count, first) = &mut at[p as usize];
-        if let Some(slot) = first.get_mut(*count as usize) {
-            *slot = (f, dir);
-        }
-        *count += 1;
-    };
-    for (k, &[a, b]) in segments.iter().enumerate() {
-        let d = points[b as usize] - points[a as usize];
-        let d = d * (1.0 / d.norm());
-        add(a, Gen::Segment(k as u32), d * -1.0);
-        add(b, Gen::Segment(k as u32), d);
-    }
-    for (k, arc) in arcs.iter().enumerate() {
-        // The counter-clockwise tangent, backwards at the start, forwards at the end.
-        for (end, angle, sign) in [(0, arc.start, -1.0), (1, arc.start + arc.span, 1.0)] {
-            let tangent = Point::new(-angle.sin(), angle.cos()) * sign;
-            add(arc.ends[end], Gen::Arc(k as u32), tangent);
-        }
-    }
     (0u32..)
-        .zip(at)
-        .filter_map(|(p, f)| match f {
-            (2, [(f1, a1), (f2, a2)]) if (a1 + a2).norm() <= TANGENT_TOL => {
+        .zip(ends_at(points, segments, arcs))
+        .filter_map(|(p, f)| match f[..] {
+            [(f1, a1), (f2, a2)] if (a1 + a2).norm() <= TANGENT_TOL => {
                 let here = points[p as usize];
                 // The normal from an arc's centre (exact where the joint is axis-aligned
                 // at exact coordinates), else the segment's perpendicular.
@@ -97,6 +98,35 @@ pub(crate) fn tangent_joints(
             _ => None,
         })
         .collect()
+}
+
+/// How near two features' directions away from a shared end may be for a cusp
+/// ([`find_cusp`]): near cusps a few 1e-9 apart gave the same wrong diagrams as exact
+/// ones (their ties hold to rounding), from 1e-8 on they pass `gvd verify`.
+const CUSP_TOL: f64 = 1e-7;
+
+/// The first cusp: a point generator and two features that leave it in one direction
+/// (`|a₁ − a₂| ≤ CUSP_TOL`; an arc and a segment or another arc, tangent there and
+/// turning back). Their separators at the point lie on one line, their common normal,
+/// and the second feature inserted is as near as the point all along the first one's
+/// separator there (nearer to second order on one side): its region's boundary runs
+/// along an old edge, which the conflict tree cannot express, and the engine's diagram
+/// was wrong there (edges 0.2–0.3 off beside arcs of radius 0.25).
+pub(crate) fn find_cusp(
+    points: &[Point],
+    segments: &[[u32; 2]],
+    arcs: &[ArcSpec],
+) -> Option<(u32, Gen, Gen)> {
+    (0u32..)
+        .zip(ends_at(points, segments, arcs))
+        .find_map(|(p, f)| {
+            f.iter().enumerate().find_map(|(i, &(f1, a1))| {
+                f[i + 1..]
+                    .iter()
+                    .find(|&&(_, a2)| (a1 - a2).norm() <= CUSP_TOL)
+                    .map(|&(f2, _)| (p, f1, f2))
+            })
+        })
 }
 
 /// Collapses the sliver of every tangent joint (see the module doc) in the raw

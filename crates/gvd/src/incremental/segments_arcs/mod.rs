@@ -53,6 +53,8 @@ pub(crate) struct SegmentDiagram {
     lines: Vec<Line>,
     arcs: Vec<Arc>,
     scale: f64,
+    /// The domain (scaled): polylines keep their tolerance where they can meet it.
+    visible: Aabb,
     /// See [`Scratch::overrides`](insert::Scratch).
     pub(crate) overrides: usize,
     /// The output points the polylines may take, and the run's watch.
@@ -108,11 +110,12 @@ impl SegmentDiagram {
                 point_id[s] = i;
             }
         }
+        let reach = super::anchor_reach(&domain) * pd.scale;
         let lines: Vec<Line> = segments
             .iter()
             .map(|&[a, b]| {
                 let (fa, fb) = (face_of_point[a as usize], face_of_point[b as usize]);
-                Line::new(pd.pts[fa as usize], pd.pts[fb as usize], [fa, fb])
+                Line::anchored(pd.pts[fa as usize], pd.pts[fb as usize], [fa, fb], reach)
             })
             .collect();
         // Internal coordinates are the input's times a power of two: exact for arcs too.
@@ -181,6 +184,7 @@ impl SegmentDiagram {
             lines,
             arcs: arc_gens,
             scale: pd.scale,
+            visible: Aabb::new(domain.min * pd.scale, domain.max * pd.scale),
             budget,
         })
     }
@@ -334,8 +338,8 @@ impl SegmentDiagram {
         })
     }
 
-    /// Appends to `out` a polyline within `tol` of the bisector of half-edge `h`, from
-    /// its origin to its target, in input coordinates.
+    /// Appends to `out` a polyline within `tol` of the bisector of half-edge `h` where
+    /// it can meet the domain, from its origin to its target, in input coordinates.
     pub(crate) fn polyline(&self, h: u32, tol: f64, out: &mut Vec<Point>) {
         let g = &self.graph;
         let he = &g.edges[h as usize];
@@ -359,9 +363,14 @@ impl SegmentDiagram {
         }
         let start = out.len();
         let left = self.budget.points_left();
-        let drawn = sites
-            .bisector(ga, gb, pa, pb)
-            .polyline(pa, pb, tol * self.scale, left, out);
+        let drawn = sites.bisector(ga, gb, pa, pb).polyline(
+            pa,
+            pb,
+            tol * self.scale,
+            &self.visible,
+            left,
+            out,
+        );
         out[start..].iter_mut().for_each(|p| *p = *p * inv);
         if drawn {
             self.budget.take_points(out.len() - start);

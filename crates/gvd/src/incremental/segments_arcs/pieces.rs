@@ -2,7 +2,7 @@
 //! into intervals of its fraction `λ ∈ [0, 1]`, each wholly claimed or wholly not.
 //!
 //! Along a line or parabola bisector the point `x(λ)` and everything the claim of
-//! segment `s` (foot `f`, signed offset `h`, `0 < f < len` and `|h| < t`) depends on is
+//! segment `s` (foot `f`, signed offset `h`, `f` between the ends' feet and `|h| < t`) depends on is
 //! polynomial in `λ` of degree at most two:
 //!
 //! * parabolas: `x`, `t`, `f` and `h` are quadratics; `|h| < t` changes where
@@ -12,7 +12,7 @@
 //!   clearance is the distance to the circle: those pieces are not exact).
 //!
 //! So the claim can only change at roots of a few quadratics, each interpolated from
-//! three samples; every interval between consecutive roots is then tested at its middle
+//! three samples (expanded about either end of the piece); every interval between consecutive roots is then tested at its middle
 //! with the exact predicate. This finds claimed or unclaimed intervals of any width,
 //! such as the needle a point next to the segment keeps (the parabola around it is
 //! about `√(δ·y)` wide at distance `y`, for the point's distance `δ` to the segment),
@@ -54,25 +54,40 @@ impl std::ops::Deref for Pieces {
 /// `to`, in order from `from`, for a new segment `line`.
 pub(crate) fn claimed_pieces(bis: &Bisector, from: Point, to: Point, line: &Line) -> Pieces {
     let claims = |x: Point, t: f64| line.claims(x, t);
+    if let Bisector::Conic(_) = bis {
+        return sampled_pieces(bis, from, to, claims);
+    }
     let sample = |lambda: f64| {
         let (x, t) = bis.at_fraction(from, to, lambda);
         let (f, h) = line.coords(x);
         (f, h, t)
     };
-    if let Bisector::Conic(_) = bis {
-        return sampled_pieces(bis, from, to, claims);
-    }
     let s = [sample(0.0), sample(0.5), sample(1.0)];
-    let quad = |value: &dyn Fn((f64, f64, f64)) -> f64| interpolate(s.map(value));
-    let (foot, end) = (quad(&|(f, _, _)| f), quad(&|(f, _, _)| f - line.len));
-    match bis {
-        Bisector::Parabola { .. } => {
-            let quads = [
-                foot,
-                end,
-                quad(&|(_, h, t)| t - h),
-                quad(&|(_, h, t)| t + h),
-            ];
+    let quad = |value: &dyn Fn((f64, f64, f64)) -> f64| s.map(value);
+    let [foot, end] = line.feet.map(|u| quad(&|(f, ..)| f - u));
+    match *bis {
+        Bisector::Parabola { p, .. } => {
+            // `t ∓ h` as `(t² − h²)/(t ± h)`, a sum without cancellation, with
+            // `t² − h²` from the focus (`Line::excess`): far out, `t` and `|h|` agree
+            // to their rounding while that difference stays exact in the focus's terms.
+            // (only where the difference lost half its bits: `FAR_END`)
+            let minus = |(f, h, t): (f64, f64, f64)| {
+                let direct = t - h;
+                if h > 0.0 && FAR_END * direct.abs() < t {
+                    line.excess((f, h), p) / (t + h)
+                } else {
+                    direct
+                }
+            };
+            let plus = |(f, h, t): (f64, f64, f64)| {
+                let direct = t + h;
+                if h < 0.0 && FAR_END * direct.abs() < t {
+                    line.excess((f, h), p) / (t - h)
+                } else {
+                    direct
+                }
+            };
+            let quads = [foot, end, quad(&minus), quad(&plus)];
             pieces_between_roots(bis, from, to, &quads, claims)
         }
         _ => {
@@ -108,23 +123,23 @@ pub(crate) fn arc_pieces(bis: &Bisector, from: Point, to: Point, arc: &Arc) -> P
     };
     let sides = [arc.a0, arc.a0 + arc.span].map(|a| Point::new(a.cos(), a.sin()));
     let x = [0.0, 0.5, 1.0].map(|l| bis.at_fraction(from, to, l));
-    let [s0, s1] = sides.map(|e| interpolate(x.map(|(q, _)| e.cross(q - arc.c))));
+    let [s0, s1] = sides.map(|e| x.map(|(q, _)| e.cross(q - arc.c)));
     let r = arc.r;
     match clearance {
         Clearance::Point(p) => {
-            let circle = interpolate(x.map(|(q, _)| {
+            let circle = x.map(|(q, _)| {
                 let t2 = q.dist2(p);
                 let d = q.dist2(arc.c) - t2 - r * r;
                 d * d - 4.0 * r * r * t2
-            }));
+            });
             pieces_between_roots(bis, from, to, &[s0, s1, circle], claims)
         }
         Clearance::Line(l) => {
             let [c0, c1] = [1.0, -1.0].map(|sign| {
-                interpolate(x.map(|(q, _)| {
+                x.map(|(q, _)| {
                     let h = l.coords(q).1;
                     q.dist2(arc.c) - (r + sign * h) * (r + sign * h)
-                }))
+                })
             });
             pieces_between_roots(bis, from, to, &[s0, s1, c0, c1], claims)
         }
@@ -132,11 +147,24 @@ pub(crate) fn arc_pieces(bis: &Bisector, from: Point, to: Point, arc: &Arc) -> P
     }
 }
 
-/// At most four quadratics: up to two roots and an extremum each, and both ends.
-const MAX_BREAKS: usize = 4 * 3 + 2;
+/// At most four quadratics: up to two roots and an extremum each from either end, and
+/// both ends.
+const MAX_BREAKS: usize = 4 * 3 * 2 + 2;
 
-/// Pieces split at the roots in `(0, 1)` of the (at most four) quadratics `quads`
-/// (coefficients of `λ⁰, λ¹, λ²`), each tested at its middle with `claims`.
+/// How much larger than the value at `λ = 1` the one at `λ = 0` must be for the roots
+/// to be taken from the expansion about `λ = 1` too: beyond it, half the bits of the
+/// value there are lost in the coefficients about `λ = 0`.
+const FAR_END: f64 = (1u64 << 26) as f64;
+
+/// Pieces split at the roots in `(0, 1)` of the (at most four) quadratics given by
+/// their values at `λ = 0, ½, 1` (`quads`), each tested at its middle with `claims`.
+///
+/// The roots come from the expansion about `λ = 0`, and also from the one about
+/// `λ = 1` (the values reversed, for `μ = 1 − λ`) where the value at 0 is far larger
+/// ([`FAR_END`]): on an edge from a vertex 1e15 away, the claim's margin there is some
+/// 1e30 times the one at a root beside the domain, which only the expansion about the
+/// near end keeps. The two copies of a root split off a sliver whose middle the
+/// predicate tests like any piece: the claim changes at the copy it bears out.
 fn pieces_between_roots(
     bis: &Bisector,
     from: Point,
@@ -145,23 +173,33 @@ fn pieces_between_roots(
     claims: impl Fn(Point, f64) -> bool,
 ) -> Pieces {
     let mut breaks = [0.0f64; MAX_BREAKS];
-    let mut extrema = [f64::NAN; 4];
+    let mut extrema = [f64::NAN; 8];
     let mut n = 0;
-    for (k, &c) in quads.iter().enumerate() {
-        let (roots, count) = quadratic_roots(c);
-        for &r in &roots[..count] {
-            if r > 0.0 && r < 1.0 {
-                breaks[n] = r;
+    for (k, &[y0, yh, y1]) in quads.iter().enumerate() {
+        let far = y0.abs() > FAR_END * y1.abs();
+        let ends = if far { 2 } else { 1 };
+        for (end, values) in [[y0, yh, y1], [y1, yh, y0]]
+            .into_iter()
+            .enumerate()
+            .take(ends)
+        {
+            let at = |m: f64| if end == 0 { m } else { 1.0 - m };
+            let c = interpolate(values);
+            let (roots, count) = quadratic_roots(c);
+            for &r in &roots[..count] {
+                if r > 0.0 && r < 1.0 {
+                    breaks[n] = at(r);
+                    n += 1;
+                }
+            }
+            // Two roots closer than rounding can resolve (a piece narrower than about
+            // 1e-8 of the edge) leave no break: the extremum between them is tested too.
+            let top = -c[1] / (2.0 * c[2]);
+            if top > 0.0 && top < 1.0 {
+                extrema[2 * k + end] = at(top);
+                breaks[n] = at(top);
                 n += 1;
             }
-        }
-        // Two roots closer than rounding can resolve (a piece narrower than about
-        // 1e-8 of the edge) leave no break: the extremum between them is tested too.
-        let top = -c[1] / (2.0 * c[2]);
-        if top > 0.0 && top < 1.0 {
-            extrema[k] = top;
-            breaks[n] = top;
-            n += 1;
         }
     }
     breaks[n] = 0.0;

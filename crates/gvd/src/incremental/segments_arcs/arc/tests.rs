@@ -2,7 +2,7 @@
 
 use super::super::geometry::{Bisector, Line, Shape};
 use super::{Arc, Conic};
-use crate::geom::Point;
+use crate::geom::{Aabb, Point};
 use std::f64::consts::{PI, TAU};
 
 /// xorshift64*: deterministic and dependency-free.
@@ -318,7 +318,8 @@ fn boundary_and_polyline() {
 
         for tol in [1e-2, 1e-4] {
             let mut pts = Vec::new();
-            assert!(bis.polyline(from, to, tol, 100_000, &mut pts));
+            let everywhere = Aabb::new(Point::new(-1e300, -1e300), Point::new(1e300, 1e300));
+            assert!(bis.polyline(from, to, tol, &everywhere, 100_000, &mut pts));
             assert_eq!((pts[0], *pts.last().unwrap()), (from, to));
             assert!(pts.len() < 100_000);
             for k in 0..=1000 {

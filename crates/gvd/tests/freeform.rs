@@ -375,6 +375,52 @@ fn deep_concavity_axis_ends_at_centres_of_curvature_and_verify_checks_it() {
 }
 
 #[test]
+fn near_a_ridge_end_the_axis_keeps_to_points_with_two_nearest_points() {
+    // near the end of a ridge, the points with two nearest points on the curve are a
+    // cusp between two branches of the evolute, narrowing like σ^{3/2} with the
+    // distance σ from the end; a chord within ε of the deep concavity's axis left it
+    // 0.005 from the end (both engines), and its points there had one nearest point
+    let sc = scene("freeform-deep-concavity-medial_axis.json");
+    let eps = sc.epsilon();
+    let curve = dense(&sc.sites()[0].kind, 200_000);
+    let n = curve.len() - 1; // the last point repeats the first
+    for engine in [Engine::Freeform, Engine::Subdivision] {
+        let d = run(&sc, engine);
+        let ends: Vec<Point> = d
+            .vertices
+            .iter()
+            .filter(|v| v.sites.len() == 2)
+            .map(|v| v.at)
+            .collect();
+        assert_eq!(ends.len(), 2, "{engine:?}: {:?}", d.vertices);
+        let mut tested = 0;
+        for w in d.edges.iter().flat_map(|e| e.points.windows(2)) {
+            for k in 0..16 {
+                let q = w[0] + (w[1] - w[0]) * (k as f64 / 16.0);
+                let sigma = ends.iter().map(|c| c.dist(q)).fold(f64::INFINITY, f64::min);
+                if !(eps..0.05).contains(&sigma) {
+                    continue;
+                }
+                let dist: Vec<f64> = curve[..n].iter().map(|p| p.dist(q)).collect();
+                let nearest = dist.iter().copied().fold(f64::INFINITY, f64::min);
+                let minima = (0..n)
+                    .filter(|&i| {
+                        let (before, after) = (dist[(i + n - 1) % n], dist[(i + 1) % n]);
+                        dist[i] <= before && dist[i] < after && dist[i] <= nearest + eps
+                    })
+                    .count();
+                assert!(
+                    minima >= 2,
+                    "{engine:?}: {q:?}, {sigma:.4} from the axis' end, has one nearest point"
+                );
+                tested += 1;
+            }
+        }
+        assert!(tested > 20, "{engine:?}: {tested} points near the ends");
+    }
+}
+
+#[test]
 fn a_bspline_with_an_interior_cusp_gets_a_corner_and_its_point_bisector() {
     // a cubic with a triple interior knot: a C0 corner at the knot (pointing at the
     // segment below), beside a straight cubic

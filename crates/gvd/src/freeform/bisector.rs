@@ -145,25 +145,57 @@ pub fn point_curve(c: &RationalBezier, t: f64, p: Point) -> Option<Point> {
 }
 
 /// Where the feet `a(t)` and `b(r)` coincide (within `tol`) with parallel normals: the
-/// centre of curvature `C + N̂/κ` there, the limit of the bisector of two parts of one
-/// curve at a vertex (the end of a ridge, HREK07 §8).
+/// centre of curvature there, the limit of the bisector of two parts of one curve at a
+/// vertex (the end of a ridge, HREK07 §8).
 pub fn ridge_end(a: &RationalBezier, t: f64, b: &RationalBezier, r: f64, tol: f64) -> Option<Eval> {
-    let [p, d1, d2] = a.derivatives(t);
+    let p = a.eval(t);
     if p.dist(b.eval(r)) > tol {
         return None;
     }
+    let centre = centre_of_curvature(a, t)?;
+    Some(Eval {
+        p: centre,
+        d: centre.dist(p),
+        feet: [Some(t), Some(r)],
+        at_ends: false,
+    })
+}
+
+/// The centre of curvature `C + N̂/κ` of `c` at `t`, `None` where `κ = 0`.
+pub fn centre_of_curvature(c: &RationalBezier, t: f64) -> Option<Point> {
+    let [p, d1, d2] = c.derivatives(t);
     let len2 = d1.dot(d1);
     let k = d1.cross(d2) / (len2 * len2.sqrt());
     if k.is_nan() || k == 0.0 {
         return None;
     }
     let n = d1.perp() * (1.0 / len2.sqrt());
-    Some(Eval {
-        p: p + n * (1.0 / k),
-        d: 1.0 / k.abs(),
-        feet: [Some(t), Some(r)],
-        at_ends: false,
-    })
+    Some(p + n * (1.0 / k))
+}
+
+/// The local nearest point of span `c` to `q` near parameter `t`: Newton on
+/// `g'(t) = ⟨C(t) − q, C'(t)⟩`, with `g''(t) = |C'|² + ⟨C(t) − q, C''⟩ > 0` (a minimum
+/// of the distance, the curvature constraint of eq. 22) all along. `None` where that
+/// minimum has gone: `q` lies beyond the evolute there, or the foot leaves the span.
+pub fn local_foot(c: &RationalBezier, mut t: f64, q: Point) -> Option<f64> {
+    for _ in 0..16 {
+        let [p, d1, d2] = c.derivatives(t);
+        let v = p - q;
+        let (g1, g2) = (v.dot(d1), d1.dot(d1) + v.dot(d2));
+        if g2.is_nan() || g2 <= 0.0 {
+            return None;
+        }
+        let step = g1 / g2;
+        t -= step;
+        if !(0.0..=1.0).contains(&t) {
+            return None;
+        }
+        // the existence of the minimum is the question, not its last digits
+        if step.abs() <= 1e-10 {
+            return Some(t);
+        }
+    }
+    None
 }
 
 /// `x` with `⟨x, u⟩ = a`, `⟨x, v⟩ = b` (Cramer's rule), `None` when `u ∥ v`.

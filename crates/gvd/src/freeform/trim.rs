@@ -8,7 +8,7 @@
 //! parameter: a change to "another feature is nearer" is a Voronoi vertex (eqs. 24–26),
 //! a change to "outside the domain" an end on the boundary.
 
-use super::bisector::side_and_curvature;
+use super::bisector::{centre_of_curvature, local_foot, side_and_curvature};
 use super::nearest::Features;
 #[cfg(doc)]
 use super::pieces::Corner;
@@ -170,6 +170,36 @@ impl Trimmer<'_> {
         Status::Valid
     }
 
+    /// Whether the chord from `pa` to `pb` about the bisector point `e` keeps, at its
+    /// quarter points, nearest points on both spans of `pair` near `e`'s feet, as the
+    /// bisector's own points have. Near the end of a ridge the points with two feet are
+    /// a cusp between two branches of the evolute, which narrows like `σ^{3/2}` with
+    /// the distance `σ` from the end: a chord within the chord tolerance can leave it,
+    /// and its points then have one foot. Within the chord tolerance of the centre of
+    /// curvature at `e`'s feet (the ridge's end) this is not asked, nor of chords
+    /// shorter than a hundredth of it (which bounds the halving where it cannot hold).
+    fn two_feet(&self, pair: [Feature; 2], e: &Eval, pa: Point, pb: Point) -> bool {
+        let ([Feature::Span(a), Feature::Span(b)], [Some(t), Some(r)], false) =
+            (pair, e.feet, e.at_ends)
+        else {
+            return true;
+        };
+        let spans = &self.features.pieces.spans;
+        let (ca, cb) = (&spans[a].curve, &spans[b].curve);
+        let end = centre_of_curvature(ca, t);
+        let apart = ca.eval(t).dist(cb.eval(r));
+        [0.25, 0.5, 0.75].into_iter().all(|s| {
+            let q = pa + (pb - pa) * s;
+            if end.is_some_and(|c| c.dist(q) <= self.chord) {
+                return true;
+            }
+            match (local_foot(ca, t, q), local_foot(cb, r, q)) {
+                (Some(t), Some(r)) => ca.eval(t).dist(cb.eval(r)) > 0.5 * apart,
+                _ => false,
+            }
+        })
+    }
+
     fn sample(&self, pair: [Feature; 2], eval: &dyn Fn(f64) -> Option<Eval>, s: f64) -> Sample {
         self.samples.set(self.samples.get() + 1);
         let e = eval(s);
@@ -219,6 +249,7 @@ impl Trimmer<'_> {
                         let share = e.p.dist(pa) / len;
                         segment_distance(e.p, pa, pb) > self.chord
                             || (len > self.chord && !(0.2..=0.8).contains(&share))
+                            || (len > 1e-2 * self.chord && !self.two_feet(pair, &e, pa, pb))
                     });
                     if far || m.status != Status::Valid {
                         self.refine(pair, eval, a, m, coarse, out);

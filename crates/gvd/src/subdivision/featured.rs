@@ -13,7 +13,7 @@
 //! one feature: the features' diagram, ridges included. Pieces are named by the
 //! generators they belong to (a ridge of one piece lists it twice).
 
-use super::{run_watched, Output, Params};
+use super::{run_watched, trace, Output, Params};
 use crate::complex::prune::keep_passing;
 use crate::complex::{Edge, Generator, Vertex, VoronoiComplex};
 use crate::control::Watch;
@@ -21,7 +21,7 @@ use crate::error::Error;
 use crate::geom::{Aabb, Point};
 use crate::scene::Scene;
 use crate::site::featured::{FeatureFields, Keep};
-use crate::site::{FieldOptions, SiteField};
+use crate::site::{DistanceField, FieldOptions, SiteField};
 use serde_json::json;
 
 /// Ends of two pieces within this fraction of the domain's size are their shared end
@@ -74,6 +74,7 @@ pub(crate) fn run(
     };
     keep_passing(&mut out.complex, &passes, resolution / 4.0, &|_, _| None);
     snap_ends(&mut out.complex, &m, resolution);
+    follow_ridges(&mut out.complex, &m, params.epsilon / 8.0, size);
     name_generators(&mut out.complex, &m);
     split_at_changes(&mut out.complex);
     out.complex.cells.clear();
@@ -143,6 +144,78 @@ fn snap_ends(complex: &mut VoronoiComplex, m: &FeatureFields, tol: f64) {
         .edges
         .retain(|e| e.points.iter().any(|&p| p != e.points[0]));
     complex.drop_unused_vertices();
+}
+
+/// Keeps each ridge among the points with two nearest points on its curve. A ridge of
+/// two pieces of one curve ends at the centre of curvature of their joint, and near
+/// that end the points with two nearest points are a cusp between two branches of the
+/// evolute, narrowing like `σ^{3/2}` with the distance `σ` from the end: a chord within
+/// the chord tolerance can leave it, and its points then have one nearest point, on one
+/// piece, while their nearest point on the other is the joint. Such chords are halved,
+/// their midpoints moved onto the bisector ([`trace::project`]), down to a hundredth of
+/// `chord`; within `chord` of the end it is not asked.
+fn follow_ridges(complex: &mut VoronoiComplex, m: &FeatureFields, chord: f64, size: f64) {
+    // the joint two fields of one generator share, with its centres of curvature
+    let joint = |[a, b]: [usize; 2]| {
+        if a == b || m.generators[a] != m.generators[b] {
+            return None;
+        }
+        let end = m.ends[a].iter().find(|end| {
+            m.ends[b]
+                .iter()
+                .any(|other| end.at.dist(other.at) <= SHARED_END * size)
+        })?;
+        Some((end.at, end.centres().collect::<Vec<_>>()))
+    };
+    let foot_at = |k: usize, q: Point, at: Point| {
+        let field = &m.fields[k];
+        (q - field.gradient(q) * field.value(q)).dist(at) <= SHARED_END * size
+    };
+    for e in &mut complex.edges {
+        let mut pair = e.sites.map(|g| g.site());
+        let mut changes = e.sites_along.iter_mut().peekable();
+        let mut points = Vec::with_capacity(e.points.len());
+        points.push(e.points[0]);
+        for (i, w) in e.points.windows(2).enumerate() {
+            while let Some(change) = changes.next_if(|c| c.start <= i) {
+                pair = change.sites.map(|g| g.site());
+                change.start = points.len() - 1;
+            }
+            if let Some((at, centres)) = joint(pair) {
+                let one_foot = |p: Point, q: Point| {
+                    [0.25, 0.5, 0.75].into_iter().any(|s| {
+                        let x = p + (q - p) * s;
+                        centres.iter().all(|c| c.dist(x) > chord)
+                            && pair.iter().any(|&k| foot_at(k, x, at))
+                    })
+                };
+                let [a, b] = pair.map(|k| k as u32);
+                halve(w[0], w[1], &mut points, &|p, q| {
+                    let len = p.dist(q);
+                    if len <= 1e-2 * chord || !one_foot(p, q) {
+                        return None;
+                    }
+                    let normal = (q - p).perp() * (1.0 / len);
+                    trace::project(&m.fields, a, b, (p + q) * 0.5, normal, 0.5 * len)
+                });
+            }
+            points.push(w[1]);
+        }
+        for change in changes {
+            change.start = points.len() - 1;
+        }
+        e.points = points.into();
+    }
+}
+
+/// Pushes onto `out` the points strictly between `p` and `q` that `split` asks for: where
+/// it gives a point for a chord, the chord is halved there and each half asked again.
+fn halve(p: Point, q: Point, out: &mut Vec<Point>, split: &dyn Fn(Point, Point) -> Option<Point>) {
+    if let Some(m) = split(p, q) {
+        halve(p, m, out, split);
+        out.push(m);
+        halve(m, q, out, split);
+    }
 }
 
 /// Replaces each generator (a field's index) by the generator it stands for, and drops

@@ -1021,3 +1021,18 @@ fn a_cusp_of_an_arc_with_an_arc_or_a_segment_is_refused() {
         }
     }
 }
+
+#[test]
+fn the_corner_where_two_sites_meet_bounds_no_edge_of_its_own() {
+    // The glyph in voronoi mode with site 0's third control point moved to y = 1e-300
+    // (fuzz_mutate.py, seed 21): sites 0 and 1 now meet at a corner, where site 0 bends
+    // back over its own end normal. The bisector of site 1's corner and site 0 came out
+    // as an edge with a loose end at site 0's centre of curvature there (verify:
+    // structure). That corner is a point of site 0, never strictly nearer than it: the
+    // bisector only bounds the two sites' tie around their shared end, which either site
+    // may name, and is no longer traced.
+    let sc = scene("fuzz/glyph20-corner-of-two-sites-voronoi");
+    let d = compute(&sc, &Options::default()).unwrap();
+    let report = verify(&sc, &d, &VerifyOptions::default()).unwrap();
+    assert!(report.passed, "{}", report.summary_line());
+}

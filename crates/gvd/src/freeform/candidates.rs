@@ -219,15 +219,25 @@ pub fn pairs(features: &Features, domain: &Aabb) -> Vec<[Feature; 2]> {
 fn keep(features: &Features, f: Feature, g: Feature, join: f64) -> bool {
     let pieces = features.pieces;
     let (sf, sg) = (pieces.site(f), pieces.site(g));
-    if !pieces.featured {
-        return sf != sg;
-    }
-    // a corner and the spans that end at it (its own, or those of a site joined there)
-    // meet only at the corner
     let touches = |c: usize, s: usize| {
         let (c, s) = (&pieces.corners[c], &pieces.spans[s].curve);
         c.at.dist(s.eval(0.0)) <= join || c.at.dist(s.eval(1.0)) <= join
     };
+    if !pieces.featured {
+        // a site's corner at an end of another site's span is a point of that site,
+        // never strictly nearer than it: the two tie in the corner's normal cone, and
+        // their bisector only bounds that tie (SCENE_FORMAT.md: either site may name a
+        // shared end's region), as at a corner of two straight sites, where it is empty
+        return sf != sg
+            && match (f, g) {
+                (Feature::Corner(c), Feature::Span(s)) | (Feature::Span(s), Feature::Corner(c)) => {
+                    !touches(c, s)
+                }
+                _ => true,
+            };
+    }
+    // a corner and the spans that end at it (its own, or those of a site joined there)
+    // meet only at the corner
     match (f, g) {
         (Feature::Corner(c), Feature::Span(s)) | (Feature::Span(s), Feature::Corner(c)) => {
             !touches(c, s)

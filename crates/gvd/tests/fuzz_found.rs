@@ -1036,3 +1036,15 @@ fn the_corner_where_two_sites_meet_bounds_no_edge_of_its_own() {
     let report = verify(&sc, &d, &VerifyOptions::default()).unwrap();
     assert!(report.passed, "{}", report.summary_line());
 }
+
+#[test]
+fn a_closed_curve_repeated_without_its_closed_flag_is_refused() {
+    // nonconvex2 with its second B-spline repeated, `closed` deleted (fuzz_mutate.py,
+    // seed 21): its ends meet, so it is the same curve, and the two tie everywhere on
+    // it; the voronoi diagram came out with edges of the two across the first curve's
+    // inside (sound 0.91, worst 0.35)
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/fuzz/nonconvex2-site-repeated-open.json");
+    let text = std::fs::read_to_string(path).unwrap();
+    assert_refused(&text, 2, "control_points", "`closed`");
+}

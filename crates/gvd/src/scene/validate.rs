@@ -329,8 +329,8 @@ fn defining_field(kind: &SiteKind) -> &'static str {
 }
 
 /// Refuses two point sites of one metric (Euclidean ones only with `euclidean`: the
-/// exact engine computes those), or two free-form curves alike but for control points,
-/// closer than f64 can separate at the scene's epsilon: the bisector of sites `δ` apart
+/// exact engine computes those), or two free-form curves alike but for control points
+/// (and a B-spline's `closed`, which does not change its points), closer than f64 can separate at the scene's epsilon: the bisector of sites `δ` apart
 /// in a domain of size `D` is placed only to about `D²·2^-52/δ` (the fields' rounding
 /// over the slope of their difference), epsilon taken at least 1e-9 of `D`. Two lp
 /// points one ulp apart otherwise give a bisector anywhere in their cell.
@@ -393,16 +393,16 @@ pub(crate) fn near_coincident_sites(
                 control_points: p,
                 knots: k,
                 weights: w,
-                closed: c,
+                ..
             },
             SiteKind::Bspline {
                 degree: e,
                 control_points: q,
                 knots: l,
                 weights: v,
-                closed: f,
+                ..
             },
-        ) if (d, k, w, c) == (e, l, v, f) => apart(p, q),
+        ) if (d, k, w) == (e, l, v) => apart(p, q),
         _ => None,
     };
     for (k, &(i, p)) in anchored.iter().enumerate() {
@@ -419,8 +419,13 @@ pub(crate) fn near_coincident_sites(
             false
         });
         if let Some((j, d)) = near {
-            let alike = match sites[i].kind {
-                SiteKind::Point { .. } => "of the same metric",
+            let alike = match (&sites[i].kind, &sites[j].kind) {
+                (SiteKind::Point { .. }, _) => "of the same metric",
+                (SiteKind::Bspline { closed: c, .. }, SiteKind::Bspline { closed: f, .. })
+                    if c != f =>
+                {
+                    "alike but for its control points and `closed` (a curve whose ends meet is closed all the same)"
+                }
                 _ => "alike but for its control points",
             };
             return Err(Error::site(

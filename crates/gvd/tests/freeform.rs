@@ -1351,3 +1351,15 @@ fn a_normal_past_its_centre_of_curvature_beside_a_short_span_leaves_no_loose_end
     no_loose_ends(&sc, &d, &joints(&sc));
     no_vertex_inside_an_edge(&d);
 }
+
+#[test]
+fn a_column_root_that_is_noise_at_a_side_does_not_cut_the_branch() {
+    // the glyph with site 19's third control point moved onto its fourth (y −0.136 →
+    // −1.4e-151, fuzz_mutate.py): near the joint of sites 18 and 19, `F3(t, ·)` of
+    // their spans showed an uncertified cluster at r ∈ [0, 4e-6] (`F3` is below its
+    // error bound by the shared end) beside the branch's root at r ≈ 0.04, the count
+    // no longer matched and the branch was lost for 5e-3 of its length: two loose ends
+    let sc = scene("freeform-glyph20-coincident-end-medial_axis.json");
+    let d = run(&sc, Engine::Freeform);
+    no_loose_ends(&sc, &d, &joints(&sc));
+}

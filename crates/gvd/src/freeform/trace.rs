@@ -30,10 +30,21 @@ pub struct Branch {
 
 /// The roots in `r` of `F3(t, ·)`, sorted (uncertified clusters by their midpoints).
 pub fn roots_at(f: &Bernstein2, t: f64) -> Vec<f64> {
-    let col = f.restrict(Axis::X, t);
-    isolate(&col, 1e-13)
+    column_roots(&f.restrict(Axis::X, t))
+        .into_iter()
+        .map(|(r, _)| r)
+        .collect()
+}
+
+/// The roots of `col`, sorted, each with whether it is an uncertified cluster that
+/// reaches a side of the square.
+fn column_roots(col: &Bernstein1) -> Vec<(f64, bool)> {
+    isolate(col, 1e-13)
         .iter()
-        .map(|root| root_in(&col, root))
+        .map(|root| {
+            let at_side = !root.certified && (root.lo <= 0.0 || root.hi >= 1.0);
+            (root_in(col, root), at_side)
+        })
         .collect()
 }
 
@@ -61,23 +72,22 @@ pub fn branch_at(f: &Bernstein2, b: &Branch, t: f64) -> Option<f64> {
     if found.len() == b.count {
         return Some(root_in(&col, &found[b.index]));
     }
-    let roots: Vec<f64> = found.iter().map(|root| root_in(&col, root)).collect();
-    counted(roots, b.count).map(|roots| roots[b.index])
+    counted(column_roots(&col), b.count).map(|roots| roots[b.index])
 }
 
 /// The roots of `F3(t, ·)` when there are `count` of them.
 fn roots_counted(f: &Bernstein2, t: f64, count: usize) -> Option<Vec<f64>> {
-    counted(roots_at(f, t), count)
+    counted(column_roots(&f.restrict(Axis::X, t)), count)
 }
 
-/// `roots` when there are `count` of them. A root just outside the square (near a
-/// singular corner) can show as an uncertified cluster at a side: those are dropped
-/// before giving up.
-fn counted(mut roots: Vec<f64>, count: usize) -> Option<Vec<f64>> {
+/// The roots when there are `count` of them. A root just outside the square (near a
+/// singular corner, where `F3` vanishes to high order and sinks below its error bound)
+/// can show as an uncertified cluster at a side: those are dropped before giving up.
+fn counted(mut roots: Vec<(f64, bool)>, count: usize) -> Option<Vec<f64>> {
     if roots.len() != count {
-        roots.retain(|&r| r > 1e-7 && r < 1.0 - 1e-7);
+        roots.retain(|&(r, at_side)| !at_side && r > 1e-7 && r < 1.0 - 1e-7);
     }
-    (roots.len() == count).then_some(roots)
+    (roots.len() == count).then(|| roots.into_iter().map(|(r, _)| r).collect())
 }
 
 /// How the work went: the number of uncertified special clusters.

@@ -330,10 +330,11 @@ fn defining_field(kind: &SiteKind) -> &'static str {
 
 /// Refuses two point sites of one metric (Euclidean ones only with `euclidean`: the
 /// exact engine computes those), or two free-form curves alike but for control points
-/// (and a B-spline's `closed`, which does not change its points), closer than f64 can separate at the scene's epsilon: the bisector of sites `δ` apart
-/// in a domain of size `D` is placed only to about `D²·2^-52/δ` (the fields' rounding
-/// over the slope of their difference), epsilon taken at least 1e-9 of `D`. Two lp
-/// points one ulp apart otherwise give a bisector anywhere in their cell.
+/// (and a B-spline's `closed`, which does not change its points), closer than f64 can
+/// separate at the scene's epsilon: the bisector of sites `δ` apart in a domain of size
+/// `D` is placed only to about `D²·2^-52/δ` (the fields' rounding over the slope of
+/// their difference), epsilon taken at least 1e-9 of `D`. Two lp points one ulp apart
+/// otherwise give a bisector anywhere in their cell.
 pub(crate) fn near_coincident_sites(
     domain: &Aabb,
     epsilon: f64,

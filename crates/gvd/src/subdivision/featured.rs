@@ -153,7 +153,8 @@ fn snap_ends(complex: &mut VoronoiComplex, m: &FeatureFields, tol: f64) {
 /// the chord tolerance can leave it, and its points then have one nearest point, on one
 /// piece, while their nearest point on the other is the joint. Such chords are halved,
 /// their midpoints moved onto the bisector ([`trace::project`]), down to a hundredth of
-/// `chord`; within `chord` of the end it is not asked.
+/// `chord` and at most [`RIDGE_HALVINGS`] times; within `chord` of the end it is not
+/// asked.
 fn follow_ridges(complex: &mut VoronoiComplex, m: &FeatureFields, chord: f64, size: f64) {
     // the joint two fields of one generator share, with its centres of curvature
     let joint = |[a, b]: [usize; 2]| {
@@ -171,7 +172,7 @@ fn follow_ridges(complex: &mut VoronoiComplex, m: &FeatureFields, chord: f64, si
         let field = &m.fields[k];
         (q - field.gradient(q) * field.value(q)).dist(at) <= SHARED_END * size
     };
-    for e in &mut complex.edges {
+    for e in complex.edges.iter_mut().filter(|e| e.points.len() >= 2) {
         let mut pair = e.sites.map(|g| g.site());
         let mut changes = e.sites_along.iter_mut().peekable();
         let mut points = Vec::with_capacity(e.points.len());
@@ -190,7 +191,7 @@ fn follow_ridges(complex: &mut VoronoiComplex, m: &FeatureFields, chord: f64, si
                     })
                 };
                 let [a, b] = pair.map(|k| k as u32);
-                halve(w[0], w[1], &mut points, &|p, q| {
+                halve(w[0], w[1], RIDGE_HALVINGS, &mut points, &|p, q| {
                     let len = p.dist(q);
                     if len <= 1e-2 * chord || !one_foot(p, q) {
                         return None;
@@ -208,13 +209,27 @@ fn follow_ridges(complex: &mut VoronoiComplex, m: &FeatureFields, chord: f64, si
     }
 }
 
+/// The most halvings of one chord of a ridge ([`follow_ridges`]; the deep concavity's
+/// axis needs two).
+const RIDGE_HALVINGS: u32 = 8;
+
 /// Pushes onto `out` the points strictly between `p` and `q` that `split` asks for: where
-/// it gives a point for a chord, the chord is halved there and each half asked again.
-fn halve(p: Point, q: Point, out: &mut Vec<Point>, split: &dyn Fn(Point, Point) -> Option<Point>) {
+/// it gives a point for a chord, the chord is halved there and each half asked again,
+/// `depth` times at most.
+fn halve(
+    p: Point,
+    q: Point,
+    depth: u32,
+    out: &mut Vec<Point>,
+    split: &dyn Fn(Point, Point) -> Option<Point>,
+) {
+    if depth == 0 {
+        return;
+    }
     if let Some(m) = split(p, q) {
-        halve(p, m, out, split);
+        halve(p, m, depth - 1, out, split);
         out.push(m);
-        halve(m, q, out, split);
+        halve(m, q, depth - 1, out, split);
     }
 }
 

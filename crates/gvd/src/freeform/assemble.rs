@@ -74,7 +74,7 @@ pub fn reach_corners(pieces: &Pieces, runs: &mut [Run], tol: f64, snap: f64) {
 /// The complex of the runs, their ends clustered within `tol` (lone ends within
 /// `snap`); also returns the number of loose run ends (ends that meet nothing and are
 /// not on the boundary).
-pub fn assemble(pieces: &Pieces, runs: &[Run], tol: f64, snap: f64) -> (VoronoiComplex, usize) {
+pub fn assemble(pieces: &Pieces, runs: Vec<Run>, tol: f64, snap: f64) -> (VoronoiComplex, usize) {
     let gens = |r: &Run| generators(pieces, r);
     let runs = &without_doubles(pieces, runs, snap);
     // cluster the run ends on a grid of cells of size `tol`
@@ -328,7 +328,7 @@ fn generators(pieces: &Pieces, r: &Run) -> [Generator; 2] {
 /// the same two generators: where a joint's normal passes its centre of curvature, the
 /// distance to the curve is flat across the normal, and the branch of `F3` beside it
 /// runs along the normal for a stretch longer than `snap`, a loose end inside an edge.
-fn without_doubles(pieces: &Pieces, runs: &[Run], snap: f64) -> Vec<Run> {
+fn without_doubles(pieces: &Pieces, runs: Vec<Run>, snap: f64) -> Vec<Run> {
     let lengths: Vec<f64> = runs.iter().map(|r| length(&r.points)).collect();
     let boxes: Vec<Aabb> = runs
         .iter()
@@ -341,13 +341,14 @@ fn without_doubles(pieces: &Pieces, runs: &[Run], snap: f64) -> Vec<Run> {
             && a.max.x <= b.max.x + snap
             && a.max.y <= b.max.y + snap
     };
+    let pairs: Vec<[Generator; 2]> = runs.iter().map(|r| generators(pieces, r)).collect();
     let mut by_pair: HashMap<[Generator; 2], Vec<usize>> = HashMap::new();
-    for (k, r) in runs.iter().enumerate() {
-        by_pair.entry(generators(pieces, r)).or_default().push(k);
+    for (k, pair) in pairs.iter().enumerate() {
+        by_pair.entry(*pair).or_default().push(k);
     }
     let traced_again = |k: usize| {
         lengths[k] > snap
-            && by_pair[&generators(pieces, &runs[k])].iter().any(|&j| {
+            && by_pair[&pairs[k]].iter().any(|&j| {
                 j != k
                     && lengths[j] > lengths[k]
                     && inside(&boxes[k], &boxes[j])
@@ -359,9 +360,10 @@ fn without_doubles(pieces: &Pieces, runs: &[Run], snap: f64) -> Vec<Run> {
                     })
             })
     };
-    (0..runs.len())
-        .filter(|&k| !traced_again(k))
-        .map(|k| runs[k].clone())
+    let doubled: Vec<bool> = (0..runs.len()).map(traced_again).collect();
+    runs.into_iter()
+        .zip(doubled)
+        .filter_map(|(r, d)| (!d).then_some(r))
         .collect()
 }
 

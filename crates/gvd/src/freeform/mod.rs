@@ -233,7 +233,7 @@ pub fn compute_with(
         });
     }
     assemble::reach_corners(&pieces, &mut runs, 1e-7 * size, trimmer.chord);
-    let (mut complex, loose) = assemble::assemble(&pieces, &runs, 1e-7 * size, trimmer.chord);
+    let (mut complex, loose) = assemble::assemble(&pieces, runs, 1e-7 * size, trimmer.chord);
     if !pieces.featured {
         complex.cells = cells::build_cells(&complex, &domain, &|q: Point| {
             features.nearest(q).map_or(0, |(f, _)| pieces.site(f))
